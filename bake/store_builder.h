@@ -1,0 +1,27 @@
+// Builds a store's arrays from probe positions and SH: input screening, merging of duplicates,
+// dimension detection (point, line, flat, general), Delaunay (TetGen), hull and outer cells,
+// barycentric and outer-cell matrices, cell ordering and the cold-start grid.
+#pragma once
+
+#include "capi/tetprobe.h"
+#include "core/store_data.h"
+
+#include <cstddef>
+
+namespace tetprobe {
+
+struct BuildSettings {
+    uint32_t flags = 0;              // TP_BUILD_*
+    double merge_tolerance = 1e-6;   // fraction of the bounding-box diagonal
+    double flat_tolerance = 1e-4;    // fraction of the bounding-box diagonal
+    tp_progress_fn progress = nullptr;
+    void* progress_user = nullptr;
+};
+
+// Throws tetprobe::Error (TP_ERROR_INVALID_ARGUMENT, TP_ERROR_DEGENERATE, TP_ERROR_TETGEN,
+// TP_ERROR_CANCELLED) on failure. positions: 3 floats per probe at position_stride bytes;
+// sh: 27 floats per probe at sh_stride bytes, or nullptr for zeros. Strides are already resolved (> 0).
+StoreData build_store_data(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
+                           size_t count, const BuildSettings& settings);
+
+}  // namespace tetprobe

@@ -1,0 +1,49 @@
+// Version, thread-local errors and status names.
+#include "boundary.h"
+
+namespace tetprobe {
+
+namespace {
+thread_local std::string t_last_error;
+}
+
+tp_status fail(tp_status status, const std::string& message) {
+    try {
+        t_last_error = message;
+    } catch (...) {
+        t_last_error.clear();  // out of memory while recording: an empty message is still safe
+    }
+    return status;
+}
+
+void clear_error() { t_last_error.clear(); }
+
+}  // namespace tetprobe
+
+extern "C" {
+
+TP_API uint32_t tp_version(void) { return TP_VERSION; }
+
+TP_API const char* tp_last_error(void) { return tetprobe::t_last_error.c_str(); }
+
+TP_API const char* tp_status_name(tp_status status) {
+    switch (status) {
+        case TP_OK: return "TP_OK";
+        case TP_ERROR_INVALID_ARGUMENT: return "TP_ERROR_INVALID_ARGUMENT";
+        case TP_ERROR_OUT_OF_MEMORY: return "TP_ERROR_OUT_OF_MEMORY";
+        case TP_ERROR_IO: return "TP_ERROR_IO";
+        case TP_ERROR_INVALID_BLOB: return "TP_ERROR_INVALID_BLOB";
+        case TP_ERROR_VERSION: return "TP_ERROR_VERSION";
+        case TP_ERROR_DEGENERATE: return "TP_ERROR_DEGENERATE";
+        case TP_ERROR_TETGEN: return "TP_ERROR_TETGEN";
+        case TP_ERROR_CANCELLED: return "TP_ERROR_CANCELLED";
+        case TP_ERROR_OUTSIDE: return "TP_ERROR_OUTSIDE";
+        case TP_ERROR_SCENE: return "TP_ERROR_SCENE";
+        case TP_ERROR_UNSUPPORTED: return "TP_ERROR_UNSUPPORTED";
+        case TP_ERROR_BUFFER_TOO_SMALL: return "TP_ERROR_BUFFER_TOO_SMALL";
+        case TP_ERROR_INTERNAL: return "TP_ERROR_INTERNAL";
+    }
+    return "TP_ERROR_UNKNOWN";
+}
+
+}  // extern "C"

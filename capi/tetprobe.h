@@ -1,0 +1,362 @@
+/*
+ * tetprobe — light probes interpolated over a tetrahedral tessellation (C ABI).
+ *
+ * The method is Unity's (R. Cupisz, "Light probe interpolation using tetrahedral tessellations",
+ * GDC 2012): probes are tetrahedralized (Delaunay), a query walks from the cell it was in last
+ * frame, and the four probes of its cell are blended with barycentric weights. Outside the probes'
+ * convex hull, open "outer cells" swept along the hull's vertex normals extrapolate smoothly.
+ *
+ * Rules of this interface
+ * - Every function returns a tp_status (TP_OK = 0). On failure tp_last_error() returns a message
+ *   for the calling thread; no exception, abort or exit ever leaves the library.
+ * - Handles (tp_store, tp_scene) are opaque, created and released by the library. Buffers are
+ *   owned by the caller and come with explicit counts and strides in bytes (0 = tightly packed).
+ * - A tp_store is immutable: any number of threads may query one store at once. The cell hint of a
+ *   moving object is owned by the caller (int32_t, -1 = none) and updated by each query.
+ * - Structs that may grow start with a struct_size field: set it to sizeof(the struct), or call the
+ *   matching *_init function, which also fills the defaults.
+ * - Positions are float32 in the caller's world units. Queries never allocate and never fail on a
+ *   valid store with valid arguments.
+ *
+ * Spherical harmonics contract (shared by every function that takes or returns SH)
+ * - Real, orthonormal SH, 3 bands (L2): 9 coefficients per colour channel, 27 floats per probe,
+ *   channel-major [r0..r8, g0..g8, b0..b8] (the layout of Unity's SphericalHarmonicsL2).
+ * - Coefficient order: L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22, with
+ *   Y00 = 0.282095, Y1-1 = 0.488603 y, Y10 = 0.488603 z, Y11 = 0.488603 x,
+ *   Y2-2 = 1.092548 xy, Y2-1 = 1.092548 yz, Y20 = 0.315392 (3z^2 - 1), Y21 = 1.092548 xz,
+ *   Y22 = 0.546274 (x^2 - y^2), for a unit direction (x, y, z) in the caller's own frame.
+ * - A probe holds the projection of incoming radiance L(w) onto these functions (not pre-convolved).
+ *   Radiance arriving from direction w is sum_i c_i Y_i(w); irradiance on a surface with normal n
+ *   applies the clamped-cosine convolution: E(n) = sum_i A_l(i) c_i Y_i(n), A = (pi, 2pi/3, pi/4).
+ */
+#ifndef TETPROBE_H
+#define TETPROBE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#  if defined(TETPROBE_BUILDING)
+#    define TP_API __declspec(dllexport)
+#  else
+#    define TP_API __declspec(dllimport)
+#  endif
+#else
+#  define TP_API __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#define TP_VERSION_MAJOR 0
+#define TP_VERSION_MINOR 4
+#define TP_VERSION_PATCH 0
+/** Version as one number, (major << 16) | (minor << 8) | patch; compare with tp_version(). */
+#define TP_VERSION ((TP_VERSION_MAJOR << 16) | (TP_VERSION_MINOR << 8) | TP_VERSION_PATCH)
+
+/** Number of floats in one probe's SH coefficients. */
+#define TP_SH_FLOATS 27
+
+typedef enum tp_status {
+    TP_OK = 0,
+    TP_ERROR_INVALID_ARGUMENT = 1, /* a null pointer, a bad count or stride, a non-finite value */
+    TP_ERROR_OUT_OF_MEMORY = 2,
+    TP_ERROR_IO = 3,               /* a file could not be read or written */
+    TP_ERROR_INVALID_BLOB = 4,     /* a store blob failed validation (truncated, corrupt, bad index) */
+    TP_ERROR_VERSION = 5,          /* a blob of a format version this library does not read */
+    TP_ERROR_DEGENERATE = 6,       /* input the operation cannot use (e.g. no probes) */
+    TP_ERROR_TETGEN = 7,           /* TetGen reported a failure */
+    TP_ERROR_CANCELLED = 8,        /* a progress callback returned non-zero */
+    TP_ERROR_OUTSIDE = 9,          /* a query outside the hull of a store built without extrapolation */
+    TP_ERROR_SCENE = 10,           /* a scene or scene file is invalid (the message says what and where) */
+    TP_ERROR_UNSUPPORTED = 11,     /* not available in this build (e.g. baking in the run-time library) */
+    TP_ERROR_BUFFER_TOO_SMALL = 12,
+    TP_ERROR_INTERNAL = 13
+} tp_status;
+
+/** Version of the loaded library, in the form of TP_VERSION. */
+TP_API uint32_t tp_version(void);
+
+/** Message of the last failure on the calling thread ("" if none); valid until the next tp_ call. */
+TP_API const char* tp_last_error(void);
+
+/** Short constant name of a status, e.g. "TP_ERROR_INVALID_BLOB". */
+TP_API const char* tp_status_name(tp_status status);
+
+/** Progress callback for long work: fraction in [0, 1], stage a short label. Return non-zero to cancel. */
+typedef int (*tp_progress_fn)(void* user, float fraction, const char* stage);
+
+/* ------------------------------------------------------------------------------------------------
+ * Probe store: build (bake-time library only), load, save, query.
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct tp_store tp_store;
+
+/** Build flags. */
+#define TP_BUILD_NO_EXTRAPOLATION 1u /* no outer cells: queries outside the hull return TP_ERROR_OUTSIDE */
+#define TP_BUILD_INDEX32 2u          /* force 32-bit indices even when 16 bits would do */
+
+typedef struct tp_build_options {
+    uint32_t struct_size;
+    uint32_t flags;              /* TP_BUILD_* */
+    /** Probes closer than this fraction of the set's bounding-box diagonal are merged (default 1e-6). */
+    double merge_tolerance;
+    /** A set whose thickness is below this fraction of its diagonal is treated as flat (default 1e-4),
+        as a line likewise (default the same). */
+    double flat_tolerance;
+    tp_progress_fn progress;     /* may be NULL */
+    void* progress_user;
+} tp_build_options;
+
+/** Fills defaults and struct_size. */
+TP_API tp_status tp_build_options_init(tp_build_options* options);
+
+/** Builds a store from probe_count probes. positions: 3 floats per probe at position_stride bytes
+    (0 = 12). sh: 27 floats per probe at sh_stride bytes (0 = 108), or NULL for zero SH. Duplicate and
+    near-duplicate probes are merged; 1, 2, collinear, flat and general sets are all accepted.
+    options may be NULL for defaults. On success *out_store owns a new store. */
+TP_API tp_status tp_store_build(const float* positions, size_t position_stride, const float* sh,
+                                size_t sh_stride, size_t probe_count, const tp_build_options* options,
+                                tp_store** out_store);
+
+/** Loads a store from a blob (copied; data may be freed afterwards). Validates everything once:
+    size, magic, version, section bounds and alignment, every index against its count, finite
+    floats, checksum, no trailing bytes. Safe for untrusted input. */
+TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_store);
+
+/** Loads and validates a store file. */
+TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store);
+
+/** Writes the store's blob to path atomically (temporary file, then rename). */
+TP_API tp_status tp_store_save_file(const tp_store* store, const char* path);
+
+/** Read-only view of the store's blob, valid while the store lives. */
+TP_API tp_status tp_store_blob(const tp_store* store, const void** out_data, size_t* out_size);
+
+/** Releases a store (NULL is allowed). */
+TP_API tp_status tp_store_release(tp_store* store);
+
+typedef struct tp_store_info {
+    uint32_t struct_size;
+    uint32_t format_version;
+    uint32_t dimension;          /* of the probe set: 0 point, 1 line, 2 flat, 3 general */
+    uint32_t probes;             /* probes kept in the store */
+    uint32_t input_probes;       /* probes given to the build */
+    uint32_t merged_probes;      /* input_probes - probes */
+    uint32_t cells;
+    uint32_t inner_cells;
+    uint32_t outer_cells;
+    uint32_t index_bits;         /* 16 or 32 */
+    uint32_t flags;              /* TP_BUILD_* the store was built with */
+    uint32_t grid[3];            /* cells of the cold-start grid along x, y, z */
+    uint64_t bytes;              /* size of the blob */
+    double origin[3];            /* local origin of the store, world units */
+    float bounds_min[3];         /* world-space bounds of the probes */
+    float bounds_max[3];
+} tp_store_info;
+
+/** Fills info (set info->struct_size first; fields beyond it are left untouched). */
+TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info);
+
+/** Reads the stored (half-precision) SH of input probe `probe` into out_sh[27]. A merged probe reads
+    its survivor. */
+TP_API tp_status tp_store_probe_sh(const tp_store* store, uint32_t probe, float out_sh[27]);
+
+/** Interpolated SH at position. cell_hint: in, the cell of the last query (-1 = none); out, the cell
+    found. May be NULL (no hint). */
+TP_API tp_status tp_store_interpolate(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                      float out_sh[27]);
+
+/** Batch of count queries. positions at position_stride bytes (0 = 12); hints at hint_stride (0 = 4),
+    or NULL; out_sh at sh_stride (0 = 108). */
+TP_API tp_status tp_store_interpolate_batch(const tp_store* store, size_t count, const float* positions,
+                                            size_t position_stride, int32_t* hints, size_t hint_stride,
+                                            float* out_sh, size_t sh_stride);
+
+/** The probes and weights a query blends: out_probes are input probe indices (survivors of merges),
+    unused slots have weight 0 and repeat a used probe. */
+TP_API tp_status tp_store_weights(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                  uint32_t out_probes[4], float out_weights[4]);
+
+/** Batch form of tp_store_weights (strides in bytes, 0 = packed: 16 for probes and weights). */
+TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, const float* positions,
+                                        size_t position_stride, int32_t* hints, size_t hint_stride,
+                                        uint32_t* out_probes, size_t probes_stride, float* out_weights,
+                                        size_t weights_stride);
+
+/** Kind of the cell a query ended in. */
+#define TP_CELL_INNER 0u
+#define TP_CELL_OUTER 1u
+
+/** Diagnostics of one query. */
+typedef struct tp_location {
+    uint32_t struct_size;
+    int32_t cell;
+    uint32_t cell_kind;          /* TP_CELL_* */
+    uint32_t steps;              /* cells visited by the walk after the start cell */
+    uint32_t fallback;           /* 1 if the walk fell back to the exact/double-precision search */
+    uint32_t probes[4];          /* as tp_store_weights */
+    float weights[4];
+    float t;                     /* outer cells: the ray parameter of the point (0 on the hull) */
+} tp_location;
+
+/** Locates position and reports everything the query used (set location->struct_size first). */
+TP_API tp_status tp_store_locate(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                 tp_location* location);
+
+/* ------------------------------------------------------------------------------------------------
+ * SH helpers (see the SH contract above).
+ * --------------------------------------------------------------------------------------------- */
+
+/** Radiance arriving from unit direction `direction` (pointing away from the probe). */
+TP_API tp_status tp_sh_eval_radiance(const float sh[27], const float direction[3], float out_rgb[3]);
+
+/** Irradiance on a surface with unit normal `normal` (clamped-cosine convolution). */
+TP_API tp_status tp_sh_eval_irradiance(const float sh[27], const float normal[3], float out_rgb[3]);
+
+/** Adds uniform incoming radiance rgb from every direction. */
+TP_API tp_status tp_sh_add_ambient(float sh[27], const float rgb[3]);
+
+/** Adds a directional light travelling along `direction` whose irradiance on a surface facing it is
+    rgb (a delta of radiance arriving from -direction). */
+TP_API tp_status tp_sh_add_directional(float sh[27], const float direction[3], const float rgb[3]);
+
+/* ------------------------------------------------------------------------------------------------
+ * Shadow caster volumes (run time): cull potential shadow casters of a light into a convex region.
+ * Planes are 4 floats (nx, ny, nz, d), inward: a point x is inside when n.x + d >= 0.
+ * --------------------------------------------------------------------------------------------- */
+
+#define TP_LIGHT_DIRECTIONAL 0u
+#define TP_LIGHT_POINT 1u
+#define TP_LIGHT_SPOT 2u
+
+/** Upper bound of the planes a volume built from plane_count planes may have. */
+TP_API size_t tp_shadow_caster_volume_bound(size_t plane_count);
+
+/** Builds the volume of everything that can cast a shadow from a light into the convex polyhedron
+    `planes` (bounded; e.g. a view frustum or the probes' bounding box). light_type is
+    TP_LIGHT_DIRECTIONAL (light_vector = direction the light travels) or TP_LIGHT_POINT / SPOT
+    (light_vector = position). out_planes holds capacity planes; *out_count receives the count. */
+TP_API tp_status tp_shadow_caster_volume(const float* planes, size_t plane_count, uint32_t light_type,
+                                         const float light_vector[3], float* out_planes, size_t capacity,
+                                         size_t* out_count);
+
+/** *out_intersects = 1 if the box may intersect the volume (conservative: never a false 0). */
+TP_API tp_status tp_volume_test_aabb(const float* planes, size_t plane_count, const float box_min[3],
+                                     const float box_max[3], int* out_intersects);
+
+/** *out_intersects = 1 if the sphere may intersect the volume (conservative). */
+TP_API tp_status tp_volume_test_sphere(const float* planes, size_t plane_count, const float center[3],
+                                       float radius, int* out_intersects);
+
+/* ------------------------------------------------------------------------------------------------
+ * Scenes and the lighting bake (bake-time library only; the run-time library returns
+ * TP_ERROR_UNSUPPORTED).
+ * --------------------------------------------------------------------------------------------- */
+
+typedef struct tp_scene tp_scene;
+
+typedef struct tp_material {
+    uint32_t struct_size;
+    float albedo[3];             /* diffuse reflectance, each in [0, 1] */
+    float emission[3];           /* emitted radiance, >= 0 */
+    int32_t two_sided;           /* non-zero: both faces reflect and emit */
+} tp_material;
+
+#define TP_LIGHT_MODE_BAKED 0u    /* direct and bounced light go into the probes */
+#define TP_LIGHT_MODE_REALTIME 1u /* the engine draws direct light; only its bounced light is baked */
+
+typedef struct tp_light {
+    uint32_t struct_size;
+    uint32_t type;               /* TP_LIGHT_* */
+    uint32_t mode;               /* TP_LIGHT_MODE_* */
+    int32_t shadows;             /* non-zero: the light casts shadows */
+    float color[3];
+    /** Directional: irradiance on a surface facing the light. Point, spot: radiant intensity
+        (irradiance intensity/d^2 at distance d, facing the light). */
+    float intensity;
+    float position[3];           /* point, spot */
+    float direction[3];          /* directional, spot: the direction the light travels */
+    float range;                 /* point, spot: no light beyond (INFINITY = unlimited) */
+    float inner_angle;           /* spot: full cone angle in degrees with full intensity */
+    float outer_angle;           /* spot: full cone angle in degrees beyond which there is no light */
+} tp_light;
+
+TP_API tp_status tp_material_init(tp_material* material);
+TP_API tp_status tp_light_init(tp_light* light);
+
+TP_API tp_status tp_scene_create(tp_scene** out_scene);
+TP_API tp_status tp_scene_release(tp_scene* scene);
+
+/** Loads a JSON scene file (meshes inline or from OBJ files relative to it, lights, sky, probes). */
+TP_API tp_status tp_scene_load_file(const char* path, tp_scene** out_scene);
+
+/** Adds a triangle mesh. vertices: 3 floats each; indices: 3 per triangle. materials: material_count
+    materials; triangle_materials: one index into materials per triangle, or NULL (all use the first). */
+TP_API tp_status tp_scene_add_mesh(tp_scene* scene, const float* vertices, size_t vertex_count,
+                                   const uint32_t* indices, size_t triangle_count,
+                                   const tp_material* materials, size_t material_count,
+                                   const uint32_t* triangle_materials, uint32_t* out_mesh);
+
+TP_API tp_status tp_scene_add_light(tp_scene* scene, const tp_light* light, uint32_t* out_light);
+
+/** Sky of constant radiance rgb. */
+TP_API tp_status tp_scene_set_sky_color(tp_scene* scene, const float rgb[3]);
+
+/** Sky radiance given as SH (27 floats, the contract above). */
+TP_API tp_status tp_scene_set_sky_sh(tp_scene* scene, const float sh[27]);
+
+/** Probe positions listed in the scene (from its file or added), view valid while the scene lives. */
+TP_API tp_status tp_scene_probes(const tp_scene* scene, const float** out_positions, size_t* out_count);
+
+/** Sets the scene's probe positions (copied). */
+TP_API tp_status tp_scene_set_probes(tp_scene* scene, const float* positions, size_t count);
+
+#define TP_BAKE_NO_CULLING 1u     /* test aid: every mesh occludes every light (no shadow caster culling) */
+
+typedef struct tp_bake_options {
+    uint32_t struct_size;
+    uint32_t flags;              /* TP_BAKE_* */
+    uint32_t rays;               /* rays per probe (default 256) */
+    uint32_t bounces;            /* surface reflections between emitter and probe (default 2) */
+    uint64_t seed;               /* the same seed gives the same bytes whatever the thread count */
+    uint32_t threads;            /* 0 = all cores */
+    tp_progress_fn progress;     /* may be NULL */
+    void* progress_user;
+} tp_bake_options;
+
+TP_API tp_status tp_bake_options_init(tp_bake_options* options);
+
+/** What a bake of this scene will simulate. */
+typedef struct tp_effects_plan {
+    uint32_t struct_size;
+    uint32_t lights;             /* lights in the scene */
+    uint32_t direct_lights;      /* baked lights whose direct light reaches the probes */
+    uint32_t realtime_lights;    /* lights baked for their bounced light only */
+    uint32_t out_of_range_lights;/* lights dropped: their range reaches no probe */
+    int32_t sky;                 /* 1 if the scene has a non-black sky */
+    uint32_t emissive_meshes;
+    uint32_t bounces;            /* bounces that will be simulated (0 if there is nothing to bounce) */
+    int32_t shadows;             /* 1 if any simulated light casts shadows */
+    uint32_t meshes;
+    uint32_t shadow_casters;     /* sum over shadowing lights of meshes kept in its occlusion set */
+    uint32_t shadow_caster_candidates; /* sum over shadowing lights of meshes considered */
+} tp_effects_plan;
+
+/** Derives the effects plan; text (may be NULL) receives a one-line summary such as
+    "direct: 2 lights (1 out of range); sky: off; emissive: 3 meshes; bounces: 2; shadow casters: 41/120 meshes". */
+TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, size_t position_stride,
+                              size_t count, const tp_bake_options* options, tp_effects_plan* plan,
+                              char* text, size_t text_capacity);
+
+/** Bakes the SH of incoming radiance at count positions into out_sh (27 floats each at sh_stride bytes,
+    0 = 108). */
+TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t position_stride, size_t count,
+                         const tp_bake_options* options, float* out_sh, size_t sh_stride);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* TETPROBE_H */

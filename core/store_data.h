@@ -1,0 +1,35 @@
+// StoreData: the store as plain arrays, between the builder (bake/) and the blob writer (core/).
+// The meaning of every field is the blob's (see store_format.h); here indices are uint32 with
+// kNone32 / kOuter32 as reserved values, SH are float, and nothing is validated.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace tetprobe {
+
+struct StoreData {
+    uint32_t flags = 0;                 // kFlagNoExtrapolation; kFlagIndex32 forces 32-bit indices
+    uint32_t dimension = 3;
+    double origin[3] = {0, 0, 0};
+    uint32_t input_probe_count = 0;
+    std::vector<float> positions;       // 3 per stored probe, local
+    std::vector<float> normals;         // 3 per stored probe
+    std::vector<float> sh;              // 27 per stored probe
+    std::vector<uint32_t> probe_source; // per stored probe
+    std::vector<uint32_t> input_remap;  // per input probe
+    uint32_t inner_cell_count = 0;
+    std::vector<uint32_t> cell_vertices;   // 4 per cell
+    std::vector<uint32_t> cell_neighbours; // 4 per cell
+    std::vector<float> inner_matrices;     // 12 per inner cell
+    std::vector<float> outer_matrices;     // 16 per outer cell
+    uint32_t grid[3] = {1, 1, 1};
+    std::vector<uint32_t> grid_cells;      // grid[0]*grid[1]*grid[2]
+    float bounds_min[3] = {0, 0, 0};       // local
+    float bounds_max[3] = {0, 0, 0};
+
+    uint32_t probe_count() const { return uint32_t(probe_source.size()); }
+    uint32_t cell_count() const { return uint32_t(cell_vertices.size() / 4); }
+};
+
+}  // namespace tetprobe
