@@ -1,0 +1,26 @@
+// Real L2 spherical harmonics: the contract is written in capi/tetprobe.h. 27 floats per probe,
+// channel-major [r0..r8, g0..g8, b0..b8].
+#pragma once
+
+namespace tetprobe {
+
+constexpr int kShCoefficients = 9;
+constexpr int kShFloats = 27;
+
+// The 9 basis functions at unit direction (x, y, z), in the contract's order.
+void sh_basis(double x, double y, double z, double out[9]);
+void sh_basis(float x, float y, float z, float out[9]);
+
+// Band factors of the clamped-cosine convolution: pi, 2pi/3, pi/4 for bands 0, 1, 2.
+double sh_cosine_lobe_band(int band);
+
+// Radiance arriving from unit direction d.
+void sh_eval_radiance(const float sh[27], const float d[3], float out_rgb[3]);
+// Irradiance on a surface with unit normal n.
+void sh_eval_irradiance(const float sh[27], const float n[3], float out_rgb[3]);
+// Adds uniform radiance rgb from all directions.
+void sh_add_ambient(float sh[27], const float rgb[3]);
+// Adds a delta of radiance arriving from -travel_direction whose irradiance facing it is rgb.
+void sh_add_directional(float sh[27], const float travel_direction[3], const float rgb[3]);
+
+}  // namespace tetprobe
