@@ -1,0 +1,45 @@
+// libFuzzer target: blob loading must reject or accept any bytes safely, and a store that loads
+// must answer queries without reading out of bounds. The first byte picks a mode: odd modes
+// repair the checksum first, so mutations reach the deeper checks (counts, indices, floats).
+#include "core/error.h"
+#include "core/store.h"
+#include "core/store_format.h"
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+    if (size < 1) return 0;
+    const bool repair_checksum = data[0] & 1;
+    std::vector<uint8_t> blob(data + 1, data + size);
+    if (repair_checksum && blob.size() >= tetprobe::kHeaderSize) {
+        uint64_t sum = tetprobe::store_checksum(blob.data(), blob.size());
+        std::memcpy(blob.data() + tetprobe::kChecksumOffset, &sum, sizeof sum);
+    }
+    std::unique_ptr<tetprobe::Store> store;
+    try {
+        store = tetprobe::Store::load(blob.data(), blob.size());
+    } catch (const tetprobe::Error&) {
+        return 0;
+    }
+    // A validated store: queries anywhere, with any hint, must terminate and stay in bounds.
+    const auto& h = store->header();
+    const float lo[3] = {h.bounds_min[0], h.bounds_min[1], h.bounds_min[2]};
+    const float hi[3] = {h.bounds_max[0], h.bounds_max[1], h.bounds_max[2]};
+    const float probes[][3] = {{0.5f, 0.5f, 0.5f}, {-1.f, 2.f, 0.25f}, {3.f, -2.f, 7.f}, {0.f, 0.f, 0.f}, {1e9f, -1e9f, 1e9f}};
+    int32_t hint = -1;
+    float sh[27];
+    for (const auto& f : probes) {
+        float p[3];
+        for (int k = 0; k < 3; ++k) p[k] = float(h.origin[k] + lo[k] + f[k] * (hi[k] - lo[k]));
+        tetprobe::Location loc = store->locate(p, hint);
+        if (loc.status == TP_OK) {
+            for (int k = 0; k < 4; ++k)
+                if (!std::isfinite(loc.weights[k])) __builtin_trap();
+        }
+        store->interpolate(p, &hint, sh);
+        hint = int32_t(size) - 7;  // arbitrary, possibly invalid hints must be safe too
+    }
+    return 0;
+}
