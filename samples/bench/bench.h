@@ -1,0 +1,3 @@
+#pragma once
+int run_store_bench(int argc, char** argv);
+int run_bake_bench(int argc, char** argv);
