@@ -1,7 +1,7 @@
 // The store blob, format version 1: one contiguous, position-independent, little-endian buffer.
 // This file is the single description of the layout; the writer and the loader both follow it.
 //
-//   [header: 112 bytes][section table: kSectionCount x {uint64 offset, uint64 size}][sections...]
+//   [header: 116 bytes][section table: kSectionCount x {uint64 offset, uint64 size}][sections...]
 //
 // Sections appear in table order, each at a 16-byte-aligned offset, with zero padding between
 // them and nothing after the last. The checksum is FNV-1a 64 of the whole blob with the checksum
@@ -64,7 +64,7 @@ constexpr uint32_t kMaxIndex16 = 0xFFFDu;  // largest count for which 16-bit ind
 struct StoreHeader {
     char magic[8];
     uint32_t format_version;
-    uint32_t header_size;       // 112 + 16 * kSectionCount
+    uint32_t header_size;       // 116 + 16 * kSectionCount
     uint32_t flags;
     uint32_t dimension;
     uint32_t probe_count;
@@ -85,7 +85,7 @@ struct SectionEntry {
 };
 #pragma pack(pop)
 
-static_assert(sizeof(StoreHeader) == 112, "header layout");
+static_assert(sizeof(StoreHeader) == 116, "header layout");
 constexpr size_t kHeaderSize = sizeof(StoreHeader) + kSectionCount * sizeof(SectionEntry);
 constexpr size_t kChecksumOffset = offsetof(StoreHeader, checksum);
 
