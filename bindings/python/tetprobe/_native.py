@@ -1,0 +1,192 @@
+"""The C ABI as ctypes: the library search, the version check, the structs and ONE prototype table.
+
+Every function of capi/tetprobe.h is declared in PROTOTYPES below and nowhere else. Buffers that
+numpy owns are passed as c_void_p (addresses), so strided views go through without copies.
+"""
+
+import ctypes
+import ctypes.util
+import os
+import sys
+from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c_float, c_int, c_int32,
+                    c_size_t, c_uint32, c_uint64, c_void_p)
+
+from .errors import Error, Status
+
+#: The library version this package was written for; major.minor must match the loaded library.
+PACKAGE_VERSION = (0, 4, 0)
+
+SH_FLOATS = 27
+
+BUILD_NO_EXTRAPOLATION = 1
+BUILD_INDEX32 = 2
+BAKE_NO_CULLING = 1
+CELL_INNER = 0
+CELL_OUTER = 1
+LIGHT_DIRECTIONAL = 0
+LIGHT_POINT = 1
+LIGHT_SPOT = 2
+LIGHT_MODE_BAKED = 0
+LIGHT_MODE_REALTIME = 1
+
+ProgressFn = CFUNCTYPE(c_int, c_void_p, c_float, c_char_p)
+
+
+class BuildOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("flags", c_uint32), ("merge_tolerance", c_double),
+                ("flat_tolerance", c_double), ("progress", ProgressFn), ("progress_user", c_void_p)]
+
+
+class StoreInfo(Structure):
+    _fields_ = [("struct_size", c_uint32), ("format_version", c_uint32), ("dimension", c_uint32),
+                ("probes", c_uint32), ("input_probes", c_uint32), ("merged_probes", c_uint32),
+                ("cells", c_uint32), ("inner_cells", c_uint32), ("outer_cells", c_uint32),
+                ("index_bits", c_uint32), ("flags", c_uint32), ("grid", c_uint32 * 3), ("bytes", c_uint64),
+                ("origin", c_double * 3), ("bounds_min", c_float * 3), ("bounds_max", c_float * 3)]
+
+
+class Location(Structure):
+    _fields_ = [("struct_size", c_uint32), ("cell", c_int32), ("cell_kind", c_uint32), ("steps", c_uint32),
+                ("fallback", c_uint32), ("probes", c_uint32 * 4), ("weights", c_float * 4), ("t", c_float)]
+
+
+class Material(Structure):
+    _fields_ = [("struct_size", c_uint32), ("albedo", c_float * 3), ("emission", c_float * 3),
+                ("two_sided", c_int32)]
+
+
+class Light(Structure):
+    _fields_ = [("struct_size", c_uint32), ("type", c_uint32), ("mode", c_uint32), ("shadows", c_int32),
+                ("color", c_float * 3), ("intensity", c_float), ("position", c_float * 3),
+                ("direction", c_float * 3), ("range", c_float), ("inner_angle", c_float),
+                ("outer_angle", c_float)]
+
+
+class BakeOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("flags", c_uint32), ("rays", c_uint32), ("bounces", c_uint32),
+                ("seed", c_uint64), ("threads", c_uint32), ("progress", ProgressFn), ("progress_user", c_void_p)]
+
+
+class EffectsPlan(Structure):
+    _fields_ = [("struct_size", c_uint32), ("lights", c_uint32), ("direct_lights", c_uint32),
+                ("realtime_lights", c_uint32), ("out_of_range_lights", c_uint32), ("sky", c_int32),
+                ("emissive_meshes", c_uint32), ("bounces", c_uint32), ("shadows", c_int32), ("meshes", c_uint32),
+                ("shadow_casters", c_uint32), ("shadow_caster_candidates", c_uint32)]
+
+
+_status = c_int
+_handle = c_void_p
+_buffer = c_void_p  # a numpy array's address; counts and strides travel separately
+
+#: (name, restype, argtypes) for every function of capi/tetprobe.h, in the header's order.
+PROTOTYPES = (
+    ("tp_version", c_uint32, ()),
+    ("tp_last_error", c_char_p, ()),
+    ("tp_status_name", c_char_p, (c_int,)),
+    ("tp_build_options_init", _status, (POINTER(BuildOptions),)),
+    ("tp_store_build", _status, (_buffer, c_size_t, _buffer, c_size_t, c_size_t, POINTER(BuildOptions),
+                                 POINTER(_handle))),
+    ("tp_store_load", _status, (c_void_p, c_size_t, POINTER(_handle))),
+    ("tp_store_load_file", _status, (c_char_p, POINTER(_handle))),
+    ("tp_store_save_file", _status, (_handle, c_char_p)),
+    ("tp_store_blob", _status, (_handle, POINTER(c_void_p), POINTER(c_size_t))),
+    ("tp_store_release", _status, (_handle,)),
+    ("tp_store_get_info", _status, (_handle, POINTER(StoreInfo))),
+    ("tp_store_probe_sh", _status, (_handle, c_uint32, _buffer)),
+    ("tp_store_interpolate", _status, (_handle, _buffer, POINTER(c_int32), _buffer)),
+    ("tp_store_interpolate_batch", _status, (_handle, c_size_t, _buffer, c_size_t, _buffer, c_size_t, _buffer,
+                                             c_size_t)),
+    ("tp_store_weights", _status, (_handle, _buffer, POINTER(c_int32), _buffer, _buffer)),
+    ("tp_store_weights_batch", _status, (_handle, c_size_t, _buffer, c_size_t, _buffer, c_size_t, _buffer,
+                                         c_size_t, _buffer, c_size_t)),
+    ("tp_store_locate", _status, (_handle, _buffer, POINTER(c_int32), POINTER(Location))),
+    ("tp_sh_eval_radiance", _status, (_buffer, _buffer, _buffer)),
+    ("tp_sh_eval_irradiance", _status, (_buffer, _buffer, _buffer)),
+    ("tp_sh_add_ambient", _status, (_buffer, _buffer)),
+    ("tp_sh_add_directional", _status, (_buffer, _buffer, _buffer)),
+    ("tp_shadow_caster_volume_bound", c_size_t, (c_size_t,)),
+    ("tp_shadow_caster_volume", _status, (_buffer, c_size_t, c_uint32, _buffer, _buffer, c_size_t,
+                                          POINTER(c_size_t))),
+    ("tp_volume_test_aabb", _status, (_buffer, c_size_t, _buffer, _buffer, POINTER(c_int))),
+    ("tp_volume_test_sphere", _status, (_buffer, c_size_t, _buffer, c_float, POINTER(c_int))),
+    ("tp_material_init", _status, (POINTER(Material),)),
+    ("tp_light_init", _status, (POINTER(Light),)),
+    ("tp_scene_create", _status, (POINTER(_handle),)),
+    ("tp_scene_release", _status, (_handle,)),
+    ("tp_scene_load_file", _status, (c_char_p, POINTER(_handle))),
+    ("tp_scene_add_mesh", _status, (_handle, _buffer, c_size_t, _buffer, c_size_t, POINTER(Material), c_size_t,
+                                    _buffer, POINTER(c_uint32))),
+    ("tp_scene_add_light", _status, (_handle, POINTER(Light), POINTER(c_uint32))),
+    ("tp_scene_set_sky_color", _status, (_handle, _buffer)),
+    ("tp_scene_set_sky_sh", _status, (_handle, _buffer)),
+    ("tp_scene_probes", _status, (_handle, POINTER(c_void_p), POINTER(c_size_t))),
+    ("tp_scene_set_probes", _status, (_handle, _buffer, c_size_t)),
+    ("tp_bake_options_init", _status, (POINTER(BakeOptions),)),
+    ("tp_bake_plan", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), POINTER(EffectsPlan),
+                               POINTER(c_char), c_size_t)),
+    ("tp_bake", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), _buffer, c_size_t)),
+)
+
+_LIBRARY_NAME = {"darwin": "libtetprobe.dylib", "win32": "tetprobe.dll"}.get(sys.platform, "libtetprobe.so")
+
+
+def candidate_paths():
+    """Where the library is looked for, in order: $TETPROBE_LIBRARY, next to the package, the build tree."""
+    package_dir = os.path.dirname(os.path.abspath(__file__))
+    repo_root = os.path.normpath(os.path.join(package_dir, "..", "..", ".."))
+    paths = []
+    if os.environ.get("TETPROBE_LIBRARY"):
+        paths.append(os.environ["TETPROBE_LIBRARY"])
+    paths.append(os.path.join(package_dir, _LIBRARY_NAME))
+    paths.append(os.path.join(repo_root, "build", _LIBRARY_NAME))
+    return paths
+
+
+def check_version(library_version, package_version=PACKAGE_VERSION):
+    """Raises Error(VERSION) unless the library's (major << 16 | minor << 8 | patch) matches major.minor."""
+    major, minor = (library_version >> 16) & 0xFFFF, (library_version >> 8) & 0xFF
+    if (major, minor) != tuple(package_version[:2]):
+        raise Error(Status.VERSION, "libtetprobe %d.%d.%d does not match the tetprobe package %d.%d.%d" %
+                    ((major, minor, library_version & 0xFF) + tuple(package_version)))
+
+
+def _load():
+    explicit = os.environ.get("TETPROBE_LIBRARY")
+    tried = []
+    for path in candidate_paths():
+        if path != explicit and not os.path.exists(path):
+            tried.append(path)
+            continue
+        try:
+            return ctypes.CDLL(path), path
+        except OSError as error:
+            if path == explicit:
+                raise ImportError("TETPROBE_LIBRARY=%s cannot be loaded: %s" % (path, error))
+            tried.append(path)
+    system = ctypes.util.find_library("tetprobe")
+    if system:
+        return ctypes.CDLL(system), system
+    raise ImportError("libtetprobe not found; set TETPROBE_LIBRARY (looked in: %s and the system)" % ", ".join(tried))
+
+
+def _declare(library):
+    for name, restype, argtypes in PROTOTYPES:
+        function = getattr(library, name)
+        function.restype = restype
+        function.argtypes = argtypes
+    return library
+
+
+lib, library_path = _load()
+_declare(lib)
+check_version(lib.tp_version())
+
+
+def last_error():
+    return lib.tp_last_error().decode("utf-8", "replace")
+
+
+def check(status):
+    """Turns a tp_status into an Error carrying the library's message for this thread."""
+    if status != 0:
+        raise Error(status, last_error())

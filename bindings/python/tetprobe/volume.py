@@ -1,0 +1,71 @@
+"""Shadow caster volumes: the region that can cast shadows from a light into a convex polyhedron."""
+
+import ctypes
+
+import numpy as np
+
+from . import _native
+from ._arrays import address, rows, vector
+from ._native import check, lib
+from .errors import Error, Status
+
+_TYPES = {"directional": (_native.LIGHT_DIRECTIONAL, "direction"), "point": (_native.LIGHT_POINT, "position"),
+          "spot": (_native.LIGHT_SPOT, "position")}
+
+
+def _light(light):
+    """(type, vector) from {"type": "point", "position": xyz}, {"type": "directional", "direction": xyz}
+    or a pair ("point", xyz) / ("directional", xyz)."""
+    if isinstance(light, dict):
+        kind = light.get("type")
+        if kind not in _TYPES:
+            raise Error(Status.INVALID_ARGUMENT, "light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
+        key = _TYPES[kind][1]
+        if key not in light:
+            raise Error(Status.INVALID_ARGUMENT, "a %s light needs '%s'" % (kind, key))
+        value = light[key]
+    else:
+        try:
+            kind, value = light
+        except (TypeError, ValueError):
+            raise Error(Status.INVALID_ARGUMENT, "light must be a dict or a (type, xyz) pair")
+        if kind not in _TYPES:
+            raise Error(Status.INVALID_ARGUMENT, "light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
+    return _TYPES[kind][0], vector(value, 3, "light vector")
+
+
+def _planes(planes):
+    data, _, _ = rows(planes, 4, "planes")
+    return np.ascontiguousarray(data)
+
+
+def shadow_caster_volume(planes, light):
+    """Inward planes[J, 4] (n.x + d >= 0 inside) of everything that can cast a shadow from `light`
+    into the bounded convex polyhedron planes[K, 4]. light: {"type": "point", "position": xyz},
+    {"type": "directional", "direction": xyz} (the direction the light travels), or ("point", xyz)."""
+    data = _planes(planes)
+    light_type, light_vector = _light(light)
+    capacity = lib.tp_shadow_caster_volume_bound(data.shape[0])
+    out = np.empty((max(capacity, 1), 4), dtype=np.float32)
+    count = ctypes.c_size_t()
+    check(lib.tp_shadow_caster_volume(address(data), data.shape[0], light_type, address(light_vector), address(out),
+                                      capacity, ctypes.byref(count)))
+    return out[:count.value].copy()
+
+
+def volume_test_aabb(planes, box_min, box_max):
+    """False only if the box certainly lies outside the volume (conservative)."""
+    data = _planes(planes)
+    hit = ctypes.c_int()
+    check(lib.tp_volume_test_aabb(address(data), data.shape[0], address(vector(box_min, 3, "box_min")),
+                                  address(vector(box_max, 3, "box_max")), ctypes.byref(hit)))
+    return bool(hit.value)
+
+
+def volume_test_sphere(planes, center, radius):
+    """False only if the sphere certainly lies outside the volume (conservative)."""
+    data = _planes(planes)
+    hit = ctypes.c_int()
+    check(lib.tp_volume_test_sphere(address(data), data.shape[0], address(vector(center, 3, "center")),
+                                    float(radius), ctypes.byref(hit)))
+    return bool(hit.value)

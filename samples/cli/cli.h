@@ -1,0 +1,111 @@
+// Shared pieces of the `tetprobe` command: errors, owning handles over the C ABI, small helpers.
+// The command uses the library through capi/tetprobe.h only.
+#pragma once
+
+#include "tetprobe.h"
+
+#include <map>
+#include <memory>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace cli {
+
+// A failure the command reports as "tetprobe: error: <message>" with exit status 1.
+struct Failure : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// A wrong command line: reported with the usage text and exit status 2.
+struct UsageError : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Throws Failure naming the call and carrying the library's message unless status is TP_OK.
+void check(tp_status status, const char* call);
+
+struct StoreRelease {
+    void operator()(tp_store* store) const { tp_store_release(store); }
+};
+struct SceneRelease {
+    void operator()(tp_scene* scene) const { tp_scene_release(scene); }
+};
+using StorePtr = std::unique_ptr<tp_store, StoreRelease>;
+using ScenePtr = std::unique_ptr<tp_scene, SceneRelease>;
+
+StorePtr load_store(const std::string& path);
+StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress);
+tp_store_info store_info(const tp_store* store);
+
+// Probe positions (3 per probe) and SH (27 per probe, or empty) read from a CSV or JSON file.
+struct ProbeFile {
+    std::vector<float> positions;
+    std::vector<float> sh;
+};
+ProbeFile read_probe_file(const std::string& path);
+
+// Writes bytes to path atomically: a temporary file beside it, then a rename.
+void write_file_atomically(const std::string& path, const void* data, size_t size);
+
+// An RGB image of width x height floats (linear), written as an 8-bit PNG through stb_image_write.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<unsigned char> rgb;
+};
+// Maps values to a perceptual-looking colour ramp (dark blue -> red -> yellow -> white) over [lo, hi].
+Image colour_map(const std::vector<float>& values, int width, int height, float lo, float hi);
+void mark(Image& image, int x, int y, const unsigned char colour[3], int radius);
+void write_png(const std::string& path, const Image& image);
+
+// Progress bar on stderr; a tp_progress_fn (user = ProgressBar*).
+struct ProgressBar {
+    std::string label;
+    int last_percent = -1;
+    static int callback(void* user, float fraction, const char* stage);
+    void finish();
+};
+
+// A command's arguments: positionals, options with a value ("-o FILE") and flags ("--json").
+struct Arguments {
+    std::vector<std::string> positional;
+    std::map<std::string, std::string> values;
+    std::set<std::string> flags;
+    bool has(const std::string& name) const { return values.count(name) || flags.count(name); }
+    std::string value(const std::string& name, const std::string& fallback) const {
+        auto it = values.find(name);
+        return it == values.end() ? fallback : it->second;
+    }
+};
+Arguments parse_arguments(const std::vector<std::string>& args, const std::set<std::string>& value_options,
+                          const std::set<std::string>& flag_options);
+
+// The lighting bake of a scene's probes with a progress bar, shared by `bake` and `demo`.
+struct BakeSettings {
+    uint32_t rays = 256;
+    uint32_t bounces = 2;
+    uint64_t seed = 0;
+    uint32_t threads = 0;
+};
+struct BakeResult {
+    std::vector<float> positions;  // 3 per probe
+    std::vector<float> sh;         // 27 per probe
+    tp_effects_plan plan;
+    std::string plan_text;
+    double seconds = 0;
+};
+BakeSettings bake_settings(const Arguments& a, uint32_t default_rays);
+BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings);
+
+// Command-line parsing helpers.
+double parse_number(const std::string& text, const char* what);
+unsigned long parse_count(const std::string& text, const char* what);
+
+int command_build(const std::vector<std::string>& args);
+int command_info(const std::vector<std::string>& args);
+int command_query(const std::vector<std::string>& args);
+int command_bake(const std::vector<std::string>& args);
+int command_demo(const std::vector<std::string>& args);
+
+}  // namespace cli

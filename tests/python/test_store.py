@@ -1,0 +1,302 @@
+"""Store: build, queries against scipy's Delaunay interpolation, exactness, round trips, errors."""
+import numpy as np
+import pytest
+from scipy.interpolate import LinearNDInterpolator
+from scipy.spatial import Delaunay
+
+import tetprobe
+from tetprobe import Error, Status, Store
+
+
+def half(values):
+    """What the store keeps of SH: IEEE half precision."""
+    return np.asarray(values, dtype=np.float32).astype(np.float16).astype(np.float32)
+
+
+def random_set(n, seed, offset=0.0, scale=1.0):
+    rng = np.random.default_rng(seed)
+    positions = (rng.random((n, 3)) * scale + offset).astype(np.float32)
+    sh = rng.uniform(-1.0, 1.0, (n, 27)).astype(np.float32)
+    return positions, sh
+
+
+def linear_sh(points):
+    points = np.asarray(points, dtype=np.float64)
+    k = np.arange(27)
+    return (0.5 + 0.1 * (k % 7) + np.outer(points[:, 0], 0.3 * ((k % 3) - 1)) +
+            np.outer(points[:, 1], 0.2 * ((k % 5) - 2)) - np.outer(points[:, 2], 0.1 * ((k % 4) - 1.5)))
+
+
+def inside_points(tri, m, seed, low=0.0, high=1.0):
+    rng = np.random.default_rng(seed)
+    points = rng.uniform(low, high, (4 * m, 3)).astype(np.float32)
+    return points[tri.find_simplex(points.astype(np.float64)) >= 0][:m]
+
+
+@pytest.mark.parametrize("seed,offset", [(1, 0.0), (2, 0.0), (3, 1000.0)])
+def test_agrees_with_scipy_delaunay_interpolation(seed, offset):
+    positions, sh = random_set(300, seed, offset=offset, scale=10.0)
+    store = Store.build(positions, sh)
+    tri = Delaunay(positions.astype(np.float64))
+    reference = LinearNDInterpolator(tri, half(sh).astype(np.float64))
+    points = inside_points(tri, 2000, seed + 100, offset + 0.5, offset + 9.5)
+    assert len(points) > 500
+    ours, hints = store.interpolate(points)
+    expected = reference(points.astype(np.float64))
+    # Relative to the field's magnitude (1): float barycentrics in a local frame.
+    assert np.max(np.abs(ours - expected)) < 2e-3
+    assert np.all(hints >= 0)
+
+
+def test_weights_agree_with_scipy_barycentrics():
+    positions, sh = random_set(200, 7)
+    store = Store.build(positions, sh)
+    tri = Delaunay(positions.astype(np.float64))
+    points = inside_points(tri, 500, 8)
+    indices, weights, hints = store.weights(points)
+    assert indices.shape == (len(points), 4) and weights.shape == (len(points), 4) and hints.dtype == np.int32
+    simplices = tri.find_simplex(points.astype(np.float64))
+    transform = tri.transform[simplices]
+    bary = np.einsum("nij,nj->ni", transform[:, :3, :], points - transform[:, 3, :])
+    bary = np.hstack([bary, 1 - bary.sum(axis=1, keepdims=True)])
+    for row in range(len(points)):
+        ours = {int(i): 0.0 for i in indices[row]}
+        for i, w in zip(indices[row], weights[row]):
+            ours[int(i)] += float(w)
+        theirs = dict(zip(tri.simplices[simplices[row]].tolist(), bary[row].tolist()))
+        for probe in set(ours) | set(theirs):
+            assert abs(ours.get(probe, 0.0) - theirs.get(probe, 0.0)) < 1e-4
+
+
+def test_exact_at_every_probe_and_weights_are_a_partition_of_unity():
+    positions, sh = random_set(150, 11)
+    store = Store.build(positions, sh)
+    out, _ = store.interpolate(positions)
+    assert np.max(np.abs(out - half(sh))) < 1e-5
+    indices, weights, _ = store.weights(positions)
+    for row in range(len(positions)):
+        hit = (indices[row] == row) & (np.abs(weights[row] - 1.0) < 1e-5)
+        assert hit.sum() == 1
+    for i in (0, 17, 149):
+        assert np.array_equal(store.probe_sh(i), half(sh[i]))
+    rng = np.random.default_rng(12)
+    _, weights, _ = store.weights(rng.uniform(0.2, 0.8, (300, 3)))
+    assert np.all(weights >= -1e-6) and np.all(weights <= 1 + 1e-6)
+    assert np.max(np.abs(weights.sum(axis=1) - 1.0)) < 1e-5
+
+
+def test_linear_field_is_reproduced_inside_the_hull():
+    corners = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=np.float32)
+    rng = np.random.default_rng(5)
+    positions = np.vstack([corners, rng.random((120, 3)).astype(np.float32)])
+    store = Store.build(positions, linear_sh(positions))
+    points = rng.uniform(0.01, 0.99, (1000, 3)).astype(np.float32)
+    out, _ = store.interpolate(points)
+    expected = linear_sh(points)
+    assert np.max(np.abs(out - expected) / (np.abs(expected) + 0.05)) < 2e-3
+
+
+def test_hints_follow_a_moving_object_and_give_the_same_answer():
+    positions, sh = random_set(400, 21)
+    store = Store.build(positions, sh)
+    path = np.stack([np.linspace(0.2, 0.8, 300), 0.5 + 0.1 * np.sin(np.linspace(0, 6, 300)),
+                     np.full(300, 0.4)], axis=1).astype(np.float32)
+    hint, steps, values = -1, [], []
+    for p in path:
+        location = store.locate(p, hint)
+        hint = location["hint"]
+        assert hint == location["cell"]
+        steps.append(location["steps"])
+        value, new_hint = store.interpolate(p, None)
+        values.append(value)
+    assert np.mean(steps[1:]) < 3.0
+    batch, hints = store.interpolate(path)
+    assert np.array_equal(batch, np.array(values))
+    again, hints2 = store.interpolate(path, hints)
+    assert np.array_equal(again, batch) and np.array_equal(hints2, hints)
+
+
+def test_strided_views_equal_packed_arrays():
+    positions, sh = random_set(100, 31)
+    store = Store.build(positions, sh)
+    rng = np.random.default_rng(32)
+    wide = rng.uniform(-0.5, 1.5, (200, 5)).astype(np.float32)  # points in columns 1..3, row stride 20 bytes
+    view = wide[:, 1:4]
+    assert not view.flags["C_CONTIGUOUS"]
+    packed = np.ascontiguousarray(view)
+    a, ha = store.interpolate(view)
+    b, hb = store.interpolate(packed)
+    assert np.array_equal(a, b) and np.array_equal(ha, hb)
+    ia, wa, _ = store.weights(view)
+    ib, wb, _ = store.weights(packed)
+    assert np.array_equal(ia, ib) and np.array_equal(wa, wb)
+    c, _ = store.interpolate(packed.astype(np.float64))
+    assert np.array_equal(a, c)
+    d, _ = store.interpolate(packed[::-1])
+    assert np.array_equal(d, a[::-1])
+    # Build from strided views too.
+    big = np.zeros((100, 4), dtype=np.float32)
+    big[:, :3] = positions
+    sh_wide = np.zeros((100, 30), dtype=np.float32)
+    sh_wide[:, :27] = sh
+    again = Store.build(big[:, :3], sh_wide[:, :27])
+    assert again.to_bytes() == store.to_bytes()
+
+
+def test_single_point_and_empty_batches():
+    positions, sh = random_set(50, 41)
+    store = Store.build(positions, sh)
+    value, hint = store.interpolate(positions[3])
+    assert value.shape == (27,) and isinstance(hint, int) and hint >= 0
+    probes, weights, hint = store.weights(positions[3])
+    assert probes.shape == (4,) and weights.shape == (4,)
+    out, hints = store.interpolate(np.zeros((0, 3), dtype=np.float32))
+    assert out.shape == (0, 27) and hints.shape == (0,)
+
+
+def test_outside_the_hull_extrapolates_or_raises_without_outer_cells():
+    positions, sh = random_set(80, 51)
+    store = Store.build(positions, sh)
+    far = np.array([[5.0, 0.5, 0.5], [1e9, -1e9, 1e9], [-3.0, -3.0, -3.0]], dtype=np.float32)
+    out, _ = store.interpolate(far)
+    assert np.all(np.isfinite(out))
+    assert store.locate(far[0])["kind"] == "outer"
+    # Values stay within the probes' range (weights are a partition of unity on the hull).
+    assert out.max() <= half(sh).max() + 1e-4 and out.min() >= half(sh).min() - 1e-4
+    closed = Store.build(positions, sh, extrapolate=False)
+    assert closed.info()["outer_cells"] == 0 and not closed.info()["extrapolation"]
+    with pytest.raises(Error) as raised:
+        closed.interpolate(far[:1])
+    assert raised.value.status == Status.OUTSIDE
+
+
+def test_info_counts_and_merged_duplicates():
+    positions, sh = random_set(60, 61)
+    duplicated = np.vstack([positions, positions[:5]])
+    store = Store.build(duplicated, np.vstack([sh, sh[:5]]))
+    info = store.info()
+    for key in ("probes", "cells", "inner_cells", "outer_cells", "merged_probes", "index_bits", "bytes",
+                "dimension", "input_probes"):
+        assert key in info
+    assert info["probes"] == 60 and info["input_probes"] == 65 and info["merged_probes"] == 5
+    assert info["cells"] == info["inner_cells"] + info["outer_cells"]
+    assert info["index_bits"] == 16 and info["dimension"] == 3
+    assert info["bytes"] == len(store.to_bytes())
+    assert np.array_equal(store.probe_sh(62), store.probe_sh(2))
+    wide = Store.build(positions, sh, index32=True)
+    assert wide.info()["index_bits"] == 32
+    assert np.array_equal(wide.interpolate(positions)[0], Store.build(positions, sh).interpolate(positions)[0])
+
+
+def test_small_and_flat_sets():
+    one = Store.build([[1.0, 2.0, 3.0]], np.ones((1, 27)))
+    assert one.info()["dimension"] == 0
+    value, _ = one.interpolate([100.0, -5.0, 0.0])
+    assert np.allclose(value, 1.0)
+    line = Store.build([[0, 0, 0], [2, 0, 0]], np.stack([np.zeros(27), np.full(27, 2.0)]))
+    assert line.info()["dimension"] == 1
+    assert np.allclose(line.interpolate([0.5, 0.0, 0.0])[0], 0.5, atol=1e-3)
+    rng = np.random.default_rng(71)
+    flat = np.column_stack([rng.random((40, 2)), np.zeros(40)]).astype(np.float32)
+    store = Store.build(flat, linear_sh(flat))
+    assert store.info()["dimension"] == 2
+    tri = Delaunay(flat[:, :2].astype(np.float64))
+    points = np.column_stack([rng.uniform(0.1, 0.9, (300, 2)), np.zeros(300)]).astype(np.float32)
+    points = points[tri.find_simplex(points[:, :2].astype(np.float64)) >= 0]
+    out, _ = store.interpolate(points)
+    expected = linear_sh(points)
+    assert np.max(np.abs(out - expected) / (np.abs(expected) + 0.05)) < 2e-3
+
+
+def test_save_load_round_trip(tmp_path):
+    positions, sh = random_set(120, 81)
+    store = Store.build(positions, sh)
+    blob = store.to_bytes()
+    path = tmp_path / "probes.tpb"
+    store.save(path)
+    assert path.read_bytes() == blob
+    assert [p.name for p in tmp_path.iterdir()] == ["probes.tpb"]  # no temporary left behind
+    from_file = Store.load(str(path))
+    from_bytes = Store.load(blob)
+    from_array = Store.load(bytearray(blob))
+    points = np.random.default_rng(82).random((100, 3)).astype(np.float32)
+    expected, _ = store.interpolate(points)
+    for loaded in (from_file, from_bytes, from_array):
+        assert loaded.to_bytes() == blob
+        assert np.array_equal(loaded.interpolate(points)[0], expected)
+    assert Store.load(path).info() == store.info()
+
+
+def test_bad_input_raises_clear_errors(tmp_path):
+    positions, sh = random_set(20, 91)
+    with pytest.raises(Error) as raised:
+        Store.build(np.zeros((0, 3), dtype=np.float32))
+    assert raised.value.status == Status.DEGENERATE and raised.value.message
+    bad = positions.copy()
+    bad[3, 1] = np.nan
+    with pytest.raises(Error) as raised:
+        Store.build(bad, sh)
+    assert raised.value.status == Status.INVALID_ARGUMENT
+    bad[3, 1] = np.inf
+    with pytest.raises(Error):
+        Store.build(bad, sh)
+    with pytest.raises(Error) as raised:
+        Store.build(positions, sh[:10])
+    assert raised.value.status == Status.INVALID_ARGUMENT
+    with pytest.raises(ValueError):
+        Store.build(positions[:, :2])
+    with pytest.raises(ValueError):
+        Store.build(positions, sh[:, :9])
+    store = Store.build(positions, sh)
+    with pytest.raises(Error) as raised:
+        store.interpolate([[0.5, np.nan, 0.5]])
+    assert raised.value.status == Status.INVALID_ARGUMENT
+    with pytest.raises(ValueError):
+        store.interpolate(positions, hints=[-1, -1])
+    with pytest.raises(Error) as raised:
+        store.probe_sh(20)
+    assert raised.value.status == Status.INVALID_ARGUMENT
+    with pytest.raises(Error) as raised:
+        Store.load(str(tmp_path / "missing.tpb"))
+    assert raised.value.status == Status.IO and raised.value.message
+    with pytest.raises(Error) as raised:
+        store.save(tmp_path / "no-such-dir" / "x.tpb")
+    assert raised.value.status == Status.IO
+    blob = store.to_bytes()
+    for cut in (0, 1, 50, len(blob) // 2, len(blob) - 1):
+        with pytest.raises(Error) as raised:
+            Store.load(blob[:cut])
+        assert raised.value.status == Status.INVALID_BLOB
+    corrupt = bytearray(blob)
+    corrupt[len(blob) // 2] ^= 0xFF
+    with pytest.raises(Error) as raised:
+        Store.load(bytes(corrupt))
+    assert raised.value.status == Status.INVALID_BLOB
+    store.close()
+    with pytest.raises(Error):
+        store.info()
+    store.close()  # twice is fine
+
+
+def test_progress_can_cancel_and_exceptions_propagate():
+    positions, sh = random_set(200, 101)
+    seen = []
+    Store.build(positions, sh, progress=lambda fraction, stage: seen.append((fraction, stage)))
+    assert seen and all(0.0 <= f <= 1.0 for f, _ in seen)
+    with pytest.raises(Error) as raised:
+        Store.build(positions, sh, progress=lambda fraction, stage: True)
+    assert raised.value.status == Status.CANCELLED
+
+    def broken(fraction, stage):
+        raise KeyError("from the callback")
+
+    with pytest.raises(KeyError):
+        Store.build(positions, sh, progress=broken)
+
+
+def test_context_manager_and_repr():
+    positions, sh = random_set(30, 111)
+    with Store.build(positions, sh) as store:
+        assert "30 probes" in repr(store)
+    assert "closed" in repr(store)
+    assert isinstance(tetprobe.Error(1, "x"), RuntimeError)
