@@ -1,0 +1,187 @@
+// Layer 2: calls into NativeMethods that turn a failing tp_status into a TetProbeException carrying
+// the library's message, check the library version once, and marshal strings and strides.
+using System;
+using System.Runtime.InteropServices;
+using System.Text;
+
+namespace TetProbe
+{
+    internal static class NativeProxy
+    {
+        /// <summary>The version this binding was written for; the library's major.minor must match.</summary>
+        public const uint BindingVersionMajor = 0, BindingVersionMinor = 4;
+
+        static bool versionChecked;
+
+        static readonly UIntPtr PositionStride = (UIntPtr)12;
+        static readonly UIntPtr HintStride = (UIntPtr)4;
+        static readonly UIntPtr ShStride = (UIntPtr)108;
+        static readonly UIntPtr FourStride = (UIntPtr)16;
+
+        public static void Check(int status)
+        {
+            if (status != 0)
+                throw new TetProbeException((TetProbeStatus)status, Marshal.PtrToStringAnsi(NativeMethods.tp_last_error()) ?? "");
+        }
+
+        /// <summary>Throws TetProbeException(Version) if the loaded library's major.minor differs from the binding's.</summary>
+        public static void EnsureVersion()
+        {
+            if (versionChecked) return;
+            uint version = NativeMethods.tp_version();
+            uint major = version >> 16, minor = (version >> 8) & 0xFF;
+            if (major != BindingVersionMajor || minor != BindingVersionMinor)
+                throw new TetProbeException(TetProbeStatus.Version, "libtetprobe " + major + "." + minor + "." + (version & 0xFF) +
+                    " does not match the TetProbe binding " + BindingVersionMajor + "." + BindingVersionMinor);
+            versionChecked = true;
+        }
+
+        static byte[] Utf8Path(string path)
+        {
+            if (path == null) throw new ArgumentNullException("path");
+            return Encoding.UTF8.GetBytes(path + "\0");
+        }
+
+        public static StoreHandle Build(Vector3[] positions, SphericalHarmonicsL2[] sh, uint flags)
+        {
+            EnsureVersion();
+            var options = new BuildOptions();
+            Check(NativeMethods.tp_build_options_init(ref options));
+            options.flags = flags;
+            StoreHandle store;
+            Check(NativeMethods.tp_store_build(positions, PositionStride, sh, ShStride, (UIntPtr)positions.Length,
+                ref options, out store));
+            return store;
+        }
+
+        public static StoreHandle Load(byte[] data)
+        {
+            EnsureVersion();
+            StoreHandle store;
+            Check(NativeMethods.tp_store_load(data.Length > 0 ? data : new byte[1], (UIntPtr)data.Length, out store));
+            return store;
+        }
+
+        public static StoreHandle LoadFile(string path)
+        {
+            EnsureVersion();
+            StoreHandle store;
+            Check(NativeMethods.tp_store_load_file(Utf8Path(path), out store));
+            return store;
+        }
+
+        public static void SaveFile(StoreHandle store, string path)
+        {
+            Check(NativeMethods.tp_store_save_file(store, Utf8Path(path)));
+        }
+
+        public static byte[] Blob(StoreHandle store)
+        {
+            IntPtr data;
+            UIntPtr size;
+            Check(NativeMethods.tp_store_blob(store, out data, out size));
+            var bytes = new byte[(long)size.ToUInt64()];
+            Marshal.Copy(data, bytes, 0, bytes.Length);
+            return bytes;
+        }
+
+        public static NativeStoreInfo Info(StoreHandle store)
+        {
+            var info = new NativeStoreInfo();
+            info.struct_size = (uint)Marshal.SizeOf(typeof(NativeStoreInfo));
+            Check(NativeMethods.tp_store_get_info(store, ref info));
+            return info;
+        }
+
+        public static SphericalHarmonicsL2 ProbeSh(StoreHandle store, int probe)
+        {
+            if (probe < 0) throw new ArgumentOutOfRangeException("probe");
+            SphericalHarmonicsL2 sh;
+            Check(NativeMethods.tp_store_probe_sh(store, (uint)probe, out sh));
+            return sh;
+        }
+
+        public static void Interpolate(StoreHandle store, Vector3 position, ref int hint, out SphericalHarmonicsL2 sh)
+        {
+            Check(NativeMethods.tp_store_interpolate(store, ref position, ref hint, out sh));
+        }
+
+        public static void InterpolateBatch(StoreHandle store, Vector3[] positions, int[] hints, SphericalHarmonicsL2[] results)
+        {
+            Check(NativeMethods.tp_store_interpolate_batch(store, (UIntPtr)positions.Length, positions, PositionStride,
+                hints, HintStride, results, ShStride));
+        }
+
+        public static void Weights(StoreHandle store, Vector3 position, ref int hint, uint[] probes, float[] weights)
+        {
+            Check(NativeMethods.tp_store_weights(store, ref position, ref hint, probes, weights));
+        }
+
+        public static void WeightsBatch(StoreHandle store, Vector3[] positions, int[] hints, uint[] probes, float[] weights)
+        {
+            Check(NativeMethods.tp_store_weights_batch(store, (UIntPtr)positions.Length, positions, PositionStride, hints,
+                HintStride, probes, FourStride, weights, FourStride));
+        }
+
+        public static NativeLocation Locate(StoreHandle store, Vector3 position, ref int hint)
+        {
+            var location = new NativeLocation();
+            location.struct_size = (uint)Marshal.SizeOf(typeof(NativeLocation));
+            Check(NativeMethods.tp_store_locate(store, ref position, ref hint, ref location));
+            return location;
+        }
+
+        public static void ShAddAmbient(ref SphericalHarmonicsL2 sh, float r, float g, float b)
+        {
+            var rgb = new Vector3(r, g, b);
+            Check(NativeMethods.tp_sh_add_ambient(ref sh, ref rgb));
+        }
+
+        public static void ShAddDirectional(ref SphericalHarmonicsL2 sh, Vector3 direction, float r, float g, float b)
+        {
+            var rgb = new Vector3(r, g, b);
+            Check(NativeMethods.tp_sh_add_directional(ref sh, ref direction, ref rgb));
+        }
+
+        public static Vector3 ShEvalRadiance(ref SphericalHarmonicsL2 sh, Vector3 direction)
+        {
+            Vector3 rgb;
+            Check(NativeMethods.tp_sh_eval_radiance(ref sh, ref direction, out rgb));
+            return rgb;
+        }
+
+        public static Vector3 ShEvalIrradiance(ref SphericalHarmonicsL2 sh, Vector3 normal)
+        {
+            Vector3 rgb;
+            Check(NativeMethods.tp_sh_eval_irradiance(ref sh, ref normal, out rgb));
+            return rgb;
+        }
+
+        public static float[] ShadowCasterVolume(float[] planes, uint lightType, Vector3 lightVector)
+        {
+            UIntPtr planeCount = (UIntPtr)(planes.Length / 4);
+            UIntPtr capacity = NativeMethods.tp_shadow_caster_volume_bound(planeCount);
+            var output = new float[4 * Math.Max(1, (int)capacity.ToUInt64())];
+            UIntPtr count;
+            Check(NativeMethods.tp_shadow_caster_volume(planes, planeCount, lightType, ref lightVector, output, capacity,
+                out count));
+            var result = new float[4 * (int)count.ToUInt64()];
+            Array.Copy(output, result, result.Length);
+            return result;
+        }
+
+        public static bool VolumeTestAabb(float[] planes, Vector3 min, Vector3 max)
+        {
+            int hit;
+            Check(NativeMethods.tp_volume_test_aabb(planes, (UIntPtr)(planes.Length / 4), ref min, ref max, out hit));
+            return hit != 0;
+        }
+
+        public static bool VolumeTestSphere(float[] planes, Vector3 center, float radius)
+        {
+            int hit;
+            Check(NativeMethods.tp_volume_test_sphere(planes, (UIntPtr)(planes.Length / 4), ref center, radius, out hit));
+            return hit != 0;
+        }
+    }
+}

@@ -1,0 +1,144 @@
+// Layer 3: ProbeStore, the idiomatic API over a native store. Immutable once built or loaded; any
+// number of threads may query one store, each moving object keeping its own int hint (-1 = none).
+using System;
+
+namespace TetProbe
+{
+    /// <summary>Counts and layout of a store (tp_store_info).</summary>
+    public struct ProbeStoreInfo
+    {
+        public int FormatVersion, Dimension, Probes, InputProbes, MergedProbes, Cells, InnerCells, OuterCells, IndexBits;
+        public bool Extrapolation;
+        public long Bytes;
+        public Vector3 BoundsMin, BoundsMax;
+    }
+
+    /// <summary>Where one query ended and what it blended (tp_location).</summary>
+    public struct ProbeLocation
+    {
+        public int Cell;
+        public bool Outer;
+        public int Steps;
+        public uint[] Probes;
+        public float[] Weights;
+    }
+
+    public sealed class ProbeStore : IDisposable
+    {
+        readonly StoreHandle handle;
+
+        ProbeStore(StoreHandle handle)
+        {
+            this.handle = handle;
+        }
+
+        /// <summary>The loaded library's version as (major &lt;&lt; 16) | (minor &lt;&lt; 8) | patch.</summary>
+        public static uint LibraryVersion { get { return NativeMethods.tp_version(); } }
+
+        /// <summary>Builds a store from probe positions and their SH (null = zeros). extrapolate = false builds no
+        /// outer cells: queries outside the probes' hull then throw with TetProbeStatus.Outside.</summary>
+        public static ProbeStore Build(Vector3[] positions, SphericalHarmonicsL2[] sh, bool extrapolate = true)
+        {
+            if (positions == null) throw new ArgumentNullException("positions");
+            if (sh != null && sh.Length != positions.Length)
+                throw new ArgumentException("sh has " + sh.Length + " entries for " + positions.Length + " positions", "sh");
+            return new ProbeStore(NativeProxy.Build(positions, sh, extrapolate ? 0u : NativeMethods.BuildNoExtrapolation));
+        }
+
+        /// <summary>Loads and validates a store file.</summary>
+        public static ProbeStore Load(string path)
+        {
+            return new ProbeStore(NativeProxy.LoadFile(path));
+        }
+
+        /// <summary>Loads and validates a store blob (copied; safe for untrusted bytes).</summary>
+        public static ProbeStore Load(byte[] data)
+        {
+            if (data == null) throw new ArgumentNullException("data");
+            return new ProbeStore(NativeProxy.Load(data));
+        }
+
+        /// <summary>Writes the store to path atomically.</summary>
+        public void Save(string path)
+        {
+            NativeProxy.SaveFile(Live(), path);
+        }
+
+        /// <summary>The store's blob.</summary>
+        public byte[] Save()
+        {
+            return NativeProxy.Blob(Live());
+        }
+
+        public ProbeStoreInfo Info
+        {
+            get
+            {
+                NativeStoreInfo n = NativeProxy.Info(Live());
+                return new ProbeStoreInfo
+                {
+                    FormatVersion = (int)n.format_version, Dimension = (int)n.dimension, Probes = (int)n.probes,
+                    InputProbes = (int)n.input_probes, MergedProbes = (int)n.merged_probes, Cells = (int)n.cells,
+                    InnerCells = (int)n.inner_cells, OuterCells = (int)n.outer_cells, IndexBits = (int)n.index_bits,
+                    Extrapolation = (n.flags & NativeMethods.BuildNoExtrapolation) == 0, Bytes = (long)n.bytes,
+                    BoundsMin = n.bounds_min, BoundsMax = n.bounds_max,
+                };
+            }
+        }
+
+        /// <summary>The stored (half-precision) SH of input probe `probe`.</summary>
+        public SphericalHarmonicsL2 ProbeSh(int probe)
+        {
+            return NativeProxy.ProbeSh(Live(), probe);
+        }
+
+        /// <summary>Interpolated SH at position; hint is the object's cell from last frame (-1 = none), updated.</summary>
+        public void Interpolate(Vector3 position, ref int hint, out SphericalHarmonicsL2 sh)
+        {
+            NativeProxy.Interpolate(Live(), position, ref hint, out sh);
+        }
+
+        /// <summary>Batch form: results[i] at positions[i]; hints (null = none) are read and updated.</summary>
+        public void Interpolate(Vector3[] positions, int[] hints, SphericalHarmonicsL2[] results)
+        {
+            if (positions == null) throw new ArgumentNullException("positions");
+            if (results == null) throw new ArgumentNullException("results");
+            if (results.Length < positions.Length)
+                throw new ArgumentException("results holds " + results.Length + " for " + positions.Length + " positions", "results");
+            if (hints != null && hints.Length < positions.Length)
+                throw new ArgumentException("hints holds " + hints.Length + " for " + positions.Length + " positions", "hints");
+            NativeProxy.InterpolateBatch(Live(), positions, hints, results);
+        }
+
+        /// <summary>The four input probes and weights a query at position blends (unused slots weigh 0).</summary>
+        public void Weights(Vector3 position, ref int hint, uint[] probes, float[] weights)
+        {
+            if (probes == null || probes.Length < 4) throw new ArgumentException("probes must hold 4", "probes");
+            if (weights == null || weights.Length < 4) throw new ArgumentException("weights must hold 4", "weights");
+            NativeProxy.Weights(Live(), position, ref hint, probes, weights);
+        }
+
+        /// <summary>Diagnostics of one query: its cell, kind, walk steps, probes and weights.</summary>
+        public ProbeLocation Locate(Vector3 position, ref int hint)
+        {
+            NativeLocation n = NativeProxy.Locate(Live(), position, ref hint);
+            return new ProbeLocation
+            {
+                Cell = n.cell, Outer = n.cell_kind == NativeMethods.CellOuter, Steps = (int)n.steps,
+                Probes = new[] { n.probe0, n.probe1, n.probe2, n.probe3 },
+                Weights = new[] { n.weight0, n.weight1, n.weight2, n.weight3 },
+            };
+        }
+
+        StoreHandle Live()
+        {
+            if (handle.IsClosed) throw new ObjectDisposedException("ProbeStore");
+            return handle;
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+    }
+}

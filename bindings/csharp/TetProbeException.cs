@@ -1,0 +1,36 @@
+// Failures of the library: the tp_status as TetProbeStatus, with the library's message.
+using System;
+
+namespace TetProbe
+{
+    /// <summary>The C ABI's tp_status values.</summary>
+    public enum TetProbeStatus
+    {
+        Ok = 0,
+        InvalidArgument = 1,
+        OutOfMemory = 2,
+        IO = 3,
+        InvalidBlob = 4,
+        Version = 5,
+        Degenerate = 6,
+        TetGen = 7,
+        Cancelled = 8,
+        Outside = 9,
+        Scene = 10,
+        Unsupported = 11,
+        BufferTooSmall = 12,
+        Internal = 13,
+    }
+
+    /// <summary>Thrown when a tetprobe call fails; Status says how, Message says what and where.</summary>
+    public class TetProbeException : Exception
+    {
+        public TetProbeStatus Status { get; private set; }
+
+        public TetProbeException(TetProbeStatus status, string message)
+            : base(status + ": " + message)
+        {
+            Status = status;
+        }
+    }
+}

@@ -1,0 +1,270 @@
+// Tests of the C# binding against the real library: exactness at probes, a linear field reproduced,
+// batch = single, hints, blob and file round trips, errors as TetProbeException, SH layout.
+using System;
+using System.IO;
+using System.Runtime.InteropServices;
+using TetProbe;
+
+static class Tests
+{
+    static int passed, failed;
+
+    static void Check(bool condition, string what)
+    {
+        if (condition) { ++passed; return; }
+        ++failed;
+        Console.WriteLine("FAIL: " + what);
+    }
+
+    static void Throws<E>(Action action, string what, Func<E, bool> accept = null) where E : Exception
+    {
+        try
+        {
+            action();
+            ++failed;
+            Console.WriteLine("FAIL: " + what + " did not throw " + typeof(E).Name);
+        }
+        catch (E e)
+        {
+            Check(accept == null || accept(e), what + " (" + e.Message + ")");
+        }
+        catch (Exception e)
+        {
+            ++failed;
+            Console.WriteLine("FAIL: " + what + " threw " + e.GetType().Name + ": " + e.Message);
+        }
+    }
+
+    static float Field(int k, Vector3 p)
+    {
+        return 0.5f + 0.1f * (k % 7) + 0.3f * p.x * ((k % 3) - 1) + 0.2f * p.y * ((k % 5) - 2) - 0.1f * p.z * ((k % 4) - 1.5f);
+    }
+
+    static SphericalHarmonicsL2 FieldSh(Vector3 p)
+    {
+        var sh = new SphericalHarmonicsL2();
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 9; ++i) sh[c, i] = Field(c * 9 + i, p);
+        return sh;
+    }
+
+    static double MaxDifference(SphericalHarmonicsL2 a, SphericalHarmonicsL2 b, bool relative)
+    {
+        double worst = 0;
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 9; ++i)
+            {
+                double d = Math.Abs(a[c, i] - b[c, i]);
+                if (relative) d /= Math.Abs(b[c, i]) + 0.05;
+                worst = Math.Max(worst, d);
+            }
+        return worst;
+    }
+
+    static Vector3[] Cloud(int n, Random random)
+    {
+        var positions = new Vector3[n];
+        for (int i = 0; i < n; ++i)
+        {
+            if (i < 8) positions[i] = new Vector3((i & 1) != 0 ? 1 : -1, (i & 2) != 0 ? 1 : -1, (i & 4) != 0 ? 1 : -1);
+            else positions[i] = new Vector3((float)(random.NextDouble() * 2 - 1), (float)(random.NextDouble() * 2 - 1),
+                                            (float)(random.NextDouble() * 2 - 1));
+        }
+        return positions;
+    }
+
+    static void Layout()
+    {
+        Check(Marshal.SizeOf(typeof(SphericalHarmonicsL2)) == 108, "SphericalHarmonicsL2 is 27 floats");
+        Check(Marshal.SizeOf(typeof(Vector3)) == 12, "Vector3 is 3 floats");
+        var sh = new SphericalHarmonicsL2();
+        sh[1, 3] = 7.0f;
+        sh[2, 8] = -2.0f;
+        Check(sh.shg3 == 7.0f && sh.shb8 == -2.0f, "indexer [rgb, coefficient] is channel-major");
+        Check(Marshal.OffsetOf(typeof(SphericalHarmonicsL2), "shg3").ToInt32() == 4 * 12, "shg3 at float 12");
+        Throws<IndexOutOfRangeException>(() => { sh[3, 0] = 1; }, "indexer rejects rgb 3");
+        Throws<IndexOutOfRangeException>(() => { float v = sh[0, 9]; }, "indexer rejects coefficient 9");
+        Check(ProbeStore.LibraryVersion >> 8 == ((NativeProxyVersion.Major << 8) | NativeProxyVersion.Minor),
+              "library major.minor matches the binding");
+    }
+
+    static void ShHelpers()
+    {
+        var sh = new SphericalHarmonicsL2();
+        sh.AddAmbientLight(0.5f, 1.0f, 2.0f);
+        Vector3 radiance = sh.EvaluateRadiance(new Vector3(0, 0, 1));
+        Check(Math.Abs(radiance.x - 0.5f) < 1e-5 && Math.Abs(radiance.z - 2.0f) < 1e-5, "ambient radiance");
+        Vector3 irradiance = sh.EvaluateIrradiance(new Vector3(1, 0, 0));
+        Check(Math.Abs(irradiance.y - Math.PI) < 1e-4, "ambient irradiance is pi L");
+        var sun = new SphericalHarmonicsL2();
+        sun.AddDirectionalLight(new Vector3(0, 0, -1), 1, 1, 1);
+        Check(Math.Abs(sun.EvaluateIrradiance(new Vector3(0, 0, 1)).x - 1.0625) < 1e-4, "directional light, L2 lobe");
+        Throws<TetProbeException>(() => sh.EvaluateRadiance(new Vector3(float.NaN, 0, 1)), "NaN direction",
+                                  e => e.Status == TetProbeStatus.InvalidArgument);
+    }
+
+    static void Queries()
+    {
+        var random = new Random(5);
+        Vector3[] positions = Cloud(150, random);
+        var sh = new SphericalHarmonicsL2[positions.Length];
+        for (int i = 0; i < positions.Length; ++i) sh[i] = FieldSh(positions[i]);
+        using (ProbeStore store = ProbeStore.Build(positions, sh))
+        {
+            ProbeStoreInfo info = store.Info;
+            Check(info.Probes == 150 && info.Cells == info.InnerCells + info.OuterCells && info.IndexBits == 16,
+                  "info counts");
+            Check(info.Dimension == 3 && info.Extrapolation, "info dimension and extrapolation");
+
+            double worst = 0;
+            for (int i = 0; i < positions.Length; ++i)
+            {
+                int hint = -1;
+                SphericalHarmonicsL2 value;
+                store.Interpolate(positions[i], ref hint, out value);
+                worst = Math.Max(worst, MaxDifference(value, store.ProbeSh(i), false));
+                Check(hint >= 0, "hint set at probe " + i);
+            }
+            Check(worst < 1e-5, "exact at every probe (worst " + worst + ")");
+
+            int moving = -1, totalSteps = 0;
+            double linear = 0;
+            var path = new Vector3[300];
+            for (int f = 0; f < path.Length; ++f)
+            {
+                path[f] = new Vector3(-0.9f + 1.8f * f / 299f, 0.4f * (float)Math.Sin(f * 0.05), 0.2f);
+                SphericalHarmonicsL2 value;
+                store.Interpolate(path[f], ref moving, out value);
+                linear = Math.Max(linear, MaxDifference(value, FieldSh(path[f]), true));
+                int probeHint = moving;
+                if (f > 0) totalSteps += store.Locate(path[f], ref probeHint).Steps;
+            }
+            Check(linear < 2e-3, "linear field reproduced inside the hull (worst relative " + linear + ")");
+            Check(totalSteps / 299.0 < 1.0, "a hinted query at the same cell takes no steps");
+
+            var batch = new SphericalHarmonicsL2[path.Length];
+            var hints = new int[path.Length];
+            for (int i = 0; i < hints.Length; ++i) hints[i] = -1;
+            store.Interpolate(path, hints, batch);
+            bool same = true;
+            for (int f = 0; f < path.Length; ++f)
+            {
+                int h = -1;
+                SphericalHarmonicsL2 single;
+                store.Interpolate(path[f], ref h, out single);
+                same &= single == batch[f] && h == hints[f];
+            }
+            Check(same, "batch equals single queries, hints included");
+            var noHints = new SphericalHarmonicsL2[path.Length];
+            store.Interpolate(path, null, noHints);
+            Check(noHints[17] == batch[17], "batch without hints");
+
+            var probes = new uint[4];
+            var weights = new float[4];
+            int wh = -1;
+            store.Weights(new Vector3(0.1f, 0.2f, 0.3f), ref wh, probes, weights);
+            Check(Math.Abs(weights[0] + weights[1] + weights[2] + weights[3] - 1) < 1e-5, "weights sum to 1");
+            int outside = -1;
+            Check(store.Locate(new Vector3(4, 0, 0), ref outside).Outer, "outside the hull: an outer cell");
+
+            Throws<TetProbeException>(() => { int h = -1; SphericalHarmonicsL2 v; store.Interpolate(new Vector3(float.NaN, 0, 0), ref h, out v); },
+                                      "NaN query", e => e.Status == TetProbeStatus.InvalidArgument);
+            Throws<ArgumentException>(() => store.Interpolate(path, new int[3], batch), "short hints array");
+            Throws<ArgumentException>(() => store.Interpolate(path, null, new SphericalHarmonicsL2[2]), "short results array");
+            Throws<TetProbeException>(() => store.ProbeSh(150), "probe index out of range",
+                                      e => e.Status == TetProbeStatus.InvalidArgument);
+        }
+
+        using (ProbeStore closed = ProbeStore.Build(positions, sh, false))
+        {
+            Check(closed.Info.OuterCells == 0, "no outer cells without extrapolation");
+            Throws<TetProbeException>(() => { int h = -1; SphericalHarmonicsL2 v; closed.Interpolate(new Vector3(4, 0, 0), ref h, out v); },
+                                      "outside without extrapolation", e => e.Status == TetProbeStatus.Outside);
+        }
+    }
+
+    static void RoundTrips(string scratch)
+    {
+        var random = new Random(9);
+        Vector3[] positions = Cloud(60, random);
+        var sh = new SphericalHarmonicsL2[positions.Length];
+        for (int i = 0; i < positions.Length; ++i) sh[i] = FieldSh(positions[i]);
+        ProbeStore store = ProbeStore.Build(positions, sh);
+        byte[] blob = store.Save();
+        Check(blob.Length == store.Info.Bytes, "blob size equals info bytes");
+        string path = Path.Combine(scratch, "store.tpb");
+        store.Save(path);
+        Check(File.Exists(path) && File.ReadAllBytes(path).Length == blob.Length, "file written");
+        using (ProbeStore fromFile = ProbeStore.Load(path))
+        using (ProbeStore fromBytes = ProbeStore.Load(blob))
+        {
+            bool same = true;
+            byte[] a = fromFile.Save(), b = fromBytes.Save();
+            for (int i = 0; i < blob.Length; ++i) same &= a[i] == blob[i] && b[i] == blob[i];
+            Check(same && a.Length == blob.Length && b.Length == blob.Length, "file and bytes round trips are byte-identical");
+            int h1 = -1, h2 = -1;
+            SphericalHarmonicsL2 x, y;
+            store.Interpolate(new Vector3(0.3f, 0.1f, -0.2f), ref h1, out x);
+            fromFile.Interpolate(new Vector3(0.3f, 0.1f, -0.2f), ref h2, out y);
+            Check(x == y, "loaded store answers the same");
+        }
+        Throws<TetProbeException>(() => ProbeStore.Load(Path.Combine(scratch, "missing.tpb")), "missing file",
+                                  e => e.Status == TetProbeStatus.IO);
+        var truncated = new byte[blob.Length / 2];
+        Array.Copy(blob, truncated, truncated.Length);
+        Throws<TetProbeException>(() => ProbeStore.Load(truncated), "truncated blob", e => e.Status == TetProbeStatus.InvalidBlob);
+        Throws<TetProbeException>(() => ProbeStore.Load(new byte[0]), "empty blob", e => e.Status == TetProbeStatus.InvalidBlob);
+        var corrupt = (byte[])blob.Clone();
+        corrupt[corrupt.Length / 2] ^= 0xFF;
+        Throws<TetProbeException>(() => ProbeStore.Load(corrupt), "corrupt blob", e => e.Status == TetProbeStatus.InvalidBlob);
+        Throws<TetProbeException>(() => store.Save("/nonexistent-dir/x.tpb"), "unwritable path", e => e.Status == TetProbeStatus.IO);
+        Throws<TetProbeException>(() => ProbeStore.Build(new Vector3[0], null), "no probes", e => e.Status == TetProbeStatus.Degenerate);
+        Throws<TetProbeException>(() => ProbeStore.Build(new[] { new Vector3(float.NaN, 0, 0) }, null), "NaN probe",
+                                  e => e.Status == TetProbeStatus.InvalidArgument);
+        Throws<ArgumentException>(() => ProbeStore.Build(positions, new SphericalHarmonicsL2[3]), "SH count mismatch");
+        Throws<ArgumentNullException>(() => ProbeStore.Build(null, null), "null positions");
+        store.Dispose();
+        store.Dispose();
+        Throws<ObjectDisposedException>(() => { var i = store.Info; }, "use after Dispose");
+    }
+
+    static void Volumes()
+    {
+        float[] cube = { 1, 0, 0, 1, -1, 0, 0, 1, 0, 1, 0, 1, 0, -1, 0, 1, 0, 0, 1, 1, 0, 0, -1, 1 };
+        float[] volume = ShadowCasterVolume.Build(cube, ShadowLight.Point, new Vector3(0, 5, 0));
+        Check(volume.Length >= 20 && volume.Length % 4 == 0, "volume planes");
+        Check(ShadowCasterVolume.TestSphere(volume, new Vector3(0, 3, 0), 0.1f), "sphere between light and box");
+        Check(!ShadowCasterVolume.TestSphere(volume, new Vector3(0, 7, 0), 0.5f), "sphere behind the light");
+        Check(!ShadowCasterVolume.TestAabb(volume, new Vector3(3, -1, 3), new Vector3(4, 0, 4)), "box beside the volume");
+        float[] sunVolume = ShadowCasterVolume.Build(cube, ShadowLight.Directional, new Vector3(0, -1, 0));
+        Check(ShadowCasterVolume.TestSphere(sunVolume, new Vector3(0, 500, 0), 1), "directional volume reaches up");
+        Throws<ArgumentException>(() => ShadowCasterVolume.Build(new float[5], ShadowLight.Point, new Vector3(0, 5, 0)),
+                                  "planes not a multiple of 4");
+    }
+
+    static int Main(string[] args)
+    {
+        string scratch = args.Length > 0 ? args[0] : Path.GetTempPath();
+        Directory.CreateDirectory(scratch);
+        foreach (Action<string> test in new Action<string>[] {
+                     s => Layout(), s => ShHelpers(), s => Queries(), RoundTrips, s => Volumes() })
+        {
+            try
+            {
+                test(scratch);
+            }
+            catch (Exception e)
+            {
+                ++failed;
+                Console.WriteLine("FAIL: unexpected " + e.GetType().Name + ": " + e.Message);
+            }
+        }
+        Console.WriteLine(passed + " passed, " + failed + " failed");
+        return failed == 0 ? 0 : 1;
+    }
+}
+
+static class NativeProxyVersion
+{
+    public const uint Major = 0, Minor = 4;
+}

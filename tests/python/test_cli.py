@@ -1,0 +1,97 @@
+"""The `tetprobe` command (path in $TETPROBE_CLI): build from CSV and JSON, info, query, errors."""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+from tetprobe import Store
+
+CLI = os.environ.get("TETPROBE_CLI", "")
+pytestmark = pytest.mark.skipif(not (CLI and os.path.exists(CLI)), reason="TETPROBE_CLI is not set")
+
+
+def run(*args, ok=True):
+    result = subprocess.run([CLI] + [str(a) for a in args], capture_output=True, text=True, timeout=120)
+    if ok:
+        assert result.returncode == 0, result.stderr
+    return result
+
+
+def probes(n=40, seed=3):
+    rng = np.random.default_rng(seed)
+    positions = rng.random((n, 3)).astype(np.float32) * 4
+    sh = rng.uniform(-1, 1, (n, 27)).astype(np.float32)
+    return positions, sh
+
+
+def test_build_from_csv_then_info_and_query(tmp_path):
+    positions, sh = probes()
+    csv = tmp_path / "probes.csv"
+    lines = ["x,y,z," + ",".join("sh%d" % k for k in range(27))]
+    lines += [",".join("%.9g" % v for v in np.concatenate([p, s])) for p, s in zip(positions, sh)]
+    csv.write_text("\n".join(lines) + "\n")
+    store_path = tmp_path / "probes.tpb"
+    out = run("build", csv, "-o", store_path).stdout
+    assert "40 probes" in out
+    assert Store.load(str(store_path)).to_bytes() == Store.build(positions, sh).to_bytes()
+
+    info = json.loads(run("info", store_path, "--json").stdout)
+    assert info["probes"] == 40 and info["cells"] == info["inner_cells"] + info["outer_cells"]
+    assert info["bytes"] == store_path.stat().st_size
+    text = run("info", store_path).stdout
+    assert "probes:" in text and "index_bits:" in text
+
+    point = positions[:4].mean(axis=0)
+    answer = json.loads(run("query", store_path, *point, "--weights", "--json").stdout)
+    expected, _ = Store.build(positions, sh).interpolate(point)
+    assert np.allclose(answer["sh"], expected, atol=1e-5)
+    assert abs(sum(answer["weights"]) - 1.0) < 1e-5
+    plain = run("query", store_path, *point, "--weights").stdout
+    assert "weight" in plain and "cell" in plain
+    far = json.loads(run("query", store_path, "-100", "2", "2", "--json").stdout)
+    assert far["cell_kind"] == "outer"
+
+
+def test_build_from_json_without_sh(tmp_path):
+    positions, _ = probes(12, 5)
+    source = tmp_path / "probes.json"
+    source.write_text(json.dumps({"probes": positions.tolist()}))
+    store_path = tmp_path / "out.tpb"
+    run("build", source, "-o", store_path)
+    answer = json.loads(run("query", store_path, 1, 1, 1, "--json").stdout)
+    assert answer["sh"] == [0.0] * 27
+
+
+def test_errors_are_messages_and_non_zero_exits(tmp_path):
+    result = run("info", tmp_path / "missing.tpb", ok=False)
+    assert result.returncode == 1 and "TP_ERROR_IO" in result.stderr
+    garbage = tmp_path / "garbage.tpb"
+    garbage.write_bytes(b"\x00" * 300)
+    result = run("query", garbage, 0, 0, 0, ok=False)
+    assert result.returncode == 1 and "TP_ERROR_INVALID_BLOB" in result.stderr
+    bad_csv = tmp_path / "bad.csv"
+    bad_csv.write_text("0,0,0\n1,2\n")
+    result = run("build", bad_csv, "-o", tmp_path / "x.tpb", ok=False)
+    assert result.returncode == 1 and "bad.csv:2" in result.stderr
+    assert not (tmp_path / "x.tpb").exists()
+    nan_csv = tmp_path / "nan.csv"
+    nan_csv.write_text("0,0,0\n1,nan,0\n")
+    result = run("build", nan_csv, "-o", tmp_path / "x.tpb", ok=False)
+    assert result.returncode == 1 and "TP_ERROR_INVALID_ARGUMENT" in result.stderr
+    assert run("query", garbage, "x", 0, 0, ok=False).returncode == 2
+    assert run("frobnicate", ok=False).returncode == 2
+    assert run(ok=False).returncode == 2
+    result = run("build", bad_csv, "-o", "/nonexistent-dir/x.tpb", ok=False)
+    assert result.returncode == 1
+
+
+def test_demo_writes_its_pictures_and_stores(tmp_path):
+    out = tmp_path / "demo"
+    result = run("demo", "--out", out, "--rays", "16", "--bounces", "1")
+    assert "mean steps per query" in result.stdout and "max SH error" in result.stdout
+    png = (out / "analytic_irradiance.png").read_bytes()
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    assert Store.load(str(out / "analytic.tpb")).info()["probes"] > 100
+    assert not [p for p in out.iterdir() if ".tmp" in p.name]
