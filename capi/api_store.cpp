@@ -1,0 +1,377 @@
+// C ABI of the run-time store: load, save, inspect and query.
+#include "boundary.h"
+#include "core/store.h"
+#include "store_handle.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace tetprobe {
+
+namespace {
+
+const Store& store_of(const tp_store* handle) { return *handle->store; }
+
+bool finite3(const float p[3]) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
+
+template <class T>
+T* strided(T* base, size_t index, size_t stride) {
+    using Byte = typename std::conditional<std::is_const<T>::value, const unsigned char, unsigned char>::type;
+    return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + index * stride);
+}
+
+// A stride in bytes: 0 means tightly packed; anything else must hold a whole element.
+size_t resolve_stride(size_t stride, size_t element, const char* name) {
+    if (stride == 0) return element;
+    if (stride < element)
+        throw Error(TP_ERROR_INVALID_ARGUMENT, std::string(name) + " (" + std::to_string(stride) +
+                                                   ") is smaller than one element (" + std::to_string(element) + " bytes)");
+    return stride;
+}
+
+std::string system_error(const std::string& what, const char* path) {
+    return what + " '" + path + "': " + std::strerror(errno);
+}
+
+// Positions are validated once, before any query of a batch runs.
+void require_finite_positions(const float* positions, size_t count, size_t stride) {
+    for (size_t i = 0; i < count; ++i) {
+        float p[3];
+        std::memcpy(p, strided(positions, i, stride), sizeof p);
+        if (!finite3(p))
+            throw Error(TP_ERROR_INVALID_ARGUMENT, "positions[" + std::to_string(i) + "] is not finite");
+    }
+}
+
+tp_status report_outside(size_t outside, size_t count, size_t first) {
+    if (outside == 0) return TP_OK;
+    return fail(TP_ERROR_OUTSIDE, std::to_string(outside) + " of " + std::to_string(count) +
+                                      " positions are outside the probes' hull (store built without extrapolation); first at index " +
+                                      std::to_string(first));
+}
+
+const char* const kOutsideMessage = "position is outside the probes' hull (store built without extrapolation)";
+
+// Fills a location's public form with input-probe indices.
+void to_input_probes(const Store& store, const Location& loc, uint32_t probes[4], float weights[4]) {
+    for (int k = 0; k < 4; ++k) {
+        probes[k] = store.probe_source(loc.probes[k]);
+        weights[k] = loc.weights[k];
+    }
+}
+
+void write_all(int fd, const uint8_t* data, size_t size, const char* path) {
+    while (size > 0) {
+        const ssize_t written = ::write(fd, data, size);
+        if (written < 0) {
+            if (errno == EINTR) continue;
+            throw Error(TP_ERROR_IO, system_error("cannot write", path));
+        }
+        data += written;
+        size -= size_t(written);
+    }
+}
+
+std::vector<uint8_t> read_file(const char* path) {
+    FILE* file = std::fopen(path, "rb");
+    if (!file) throw Error(TP_ERROR_IO, system_error("cannot open", path));
+    std::vector<uint8_t> bytes;
+    uint8_t buffer[1 << 16];
+    for (;;) {
+        const size_t n = std::fread(buffer, 1, sizeof buffer, file);
+        bytes.insert(bytes.end(), buffer, buffer + n);
+        if (n < sizeof buffer) break;
+    }
+    const bool failed = std::ferror(file) != 0;
+    std::fclose(file);
+    if (failed) throw Error(TP_ERROR_IO, std::string("cannot read '") + path + "'");
+    return bytes;
+}
+
+// Writes the bytes to a temporary file next to path, flushes it to disk and renames it over path,
+// so that path holds either the old file or the whole new one, never a part.
+void write_file_atomically(const char* path, const uint8_t* data, size_t size) {
+    std::string temp = std::string(path) + ".tmp.XXXXXX";
+    std::vector<char> name(temp.begin(), temp.end());
+    name.push_back('\0');
+    const int fd = ::mkstemp(name.data());
+    if (fd < 0) throw Error(TP_ERROR_IO, system_error("cannot create a temporary file for", path));
+    bool open = true;
+    try {
+        write_all(fd, data, size, path);
+        if (::fchmod(fd, 0644) != 0) throw Error(TP_ERROR_IO, system_error("cannot set permissions of", path));
+        if (::fsync(fd) != 0) throw Error(TP_ERROR_IO, system_error("cannot flush", path));
+        open = false;
+        if (::close(fd) != 0) throw Error(TP_ERROR_IO, system_error("cannot close", path));
+    } catch (...) {
+        if (open) ::close(fd);
+        ::unlink(name.data());
+        throw;
+    }
+    if (std::rename(name.data(), path) != 0) {
+        const std::string message = system_error("cannot rename the temporary file onto", path);
+        ::unlink(name.data());
+        throw Error(TP_ERROR_IO, message);
+    }
+    // Make the rename itself durable (best effort: some file systems refuse fsync on directories).
+    std::string directory(path);
+    const size_t slash = directory.find_last_of('/');
+    directory = slash == std::string::npos ? "." : (slash == 0 ? "/" : directory.substr(0, slash));
+    const int dir_fd = ::open(directory.c_str(), O_RDONLY);
+    if (dir_fd >= 0) {
+        ::fsync(dir_fd);
+        ::close(dir_fd);
+    }
+}
+
+// Writes the fields of T that fit in struct_size bytes from a full local copy.
+template <class T>
+void copy_fitting_fields(T* out, const T& full, uint32_t struct_size) {
+    const size_t n = struct_size < sizeof(T) ? struct_size : sizeof(T);
+    std::memcpy(reinterpret_cast<unsigned char*>(out) + sizeof(uint32_t),
+                reinterpret_cast<const unsigned char*>(&full) + sizeof(uint32_t), n - sizeof(uint32_t));
+}
+
+}  // namespace
+
+}  // namespace tetprobe
+
+using namespace tetprobe;
+
+extern "C" {
+
+TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_store) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(out_store);
+    *out_store = nullptr;
+    if (!data) return fail(TP_ERROR_INVALID_ARGUMENT, "data is NULL");
+    std::unique_ptr<tp_store> handle(new tp_store);
+    handle->store = Store::load(data, size);
+    *out_store = handle.release();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(out_store);
+    *out_store = nullptr;
+    TP_REQUIRE_NOT_NULL(path);
+    const std::vector<uint8_t> bytes = read_file(path);
+    std::unique_ptr<tp_store> handle(new tp_store);
+    try {
+        handle->store = Store::load(bytes.data(), bytes.size());
+    } catch (const Error& e) {
+        throw Error(e.status(), std::string(e.what()) + " (file '" + path + "')");
+    }
+    *out_store = handle.release();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_save_file(const tp_store* store, const char* path) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(path);
+    if (!*path) return fail(TP_ERROR_INVALID_ARGUMENT, "path is empty");
+    write_file_atomically(path, store_of(store).blob_data(), store_of(store).blob_size());
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_blob(const tp_store* store, const void** out_data, size_t* out_size) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(out_data);
+    TP_REQUIRE_NOT_NULL(out_size);
+    *out_data = store_of(store).blob_data();
+    *out_size = store_of(store).blob_size();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_release(tp_store* store) {
+    TP_API_BEGIN
+    delete store;
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(info);
+    if (info->struct_size < sizeof(uint32_t))
+        return fail(TP_ERROR_INVALID_ARGUMENT, "info->struct_size is not set (use sizeof(tp_store_info))");
+    const Store& s = store_of(store);
+    const StoreHeader& h = s.header();
+    tp_store_info full;
+    std::memset(&full, 0, sizeof full);
+    full.struct_size = info->struct_size;
+    full.format_version = h.format_version;
+    full.dimension = h.dimension;
+    full.probes = h.probe_count;
+    full.input_probes = h.input_probe_count;
+    full.merged_probes = h.input_probe_count - h.probe_count;
+    full.cells = h.cell_count;
+    full.inner_cells = h.inner_cell_count;
+    full.outer_cells = h.cell_count - h.inner_cell_count;
+    full.index_bits = (h.flags & kFlagIndex32) ? 32 : 16;
+    full.flags = ((h.flags & kFlagNoExtrapolation) ? TP_BUILD_NO_EXTRAPOLATION : 0u) |
+                 ((h.flags & kFlagIndex32) ? TP_BUILD_INDEX32 : 0u);
+    for (int k = 0; k < 3; ++k) {
+        full.grid[k] = h.grid[k];
+        full.origin[k] = h.origin[k];
+        full.bounds_min[k] = float(h.origin[k] + double(h.bounds_min[k]));
+        full.bounds_max[k] = float(h.origin[k] + double(h.bounds_max[k]));
+    }
+    full.bytes = s.blob_size();
+    copy_fitting_fields(info, full, info->struct_size);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_probe_sh(const tp_store* store, uint32_t probe, float out_sh[27]) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(out_sh);
+    const Store& s = store_of(store);
+    if (probe >= s.header().input_probe_count)
+        return fail(TP_ERROR_INVALID_ARGUMENT, "probe " + std::to_string(probe) + " is not an input probe (the store has " +
+                                                   std::to_string(s.header().input_probe_count) + ")");
+    s.probe_sh(s.input_to_stored(probe), out_sh);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_interpolate(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                      float out_sh[27]) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(position);
+    TP_REQUIRE_NOT_NULL(out_sh);
+    if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
+    const tp_status status = store_of(store).interpolate(position, cell_hint, out_sh);
+    if (status != TP_OK) return fail(status, kOutsideMessage);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_interpolate_batch(const tp_store* store, size_t count, const float* positions,
+                                            size_t position_stride, int32_t* hints, size_t hint_stride,
+                                            float* out_sh, size_t sh_stride) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    if (count == 0) return TP_OK;
+    TP_REQUIRE_NOT_NULL(positions);
+    TP_REQUIRE_NOT_NULL(out_sh);
+    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
+    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
+    sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
+    require_finite_positions(positions, count, position_stride);
+    const Store& s = store_of(store);
+    size_t outside = 0, first_outside = 0;
+    for (size_t i = 0; i < count; ++i) {
+        float p[3], sh[27];
+        std::memcpy(p, strided(positions, i, position_stride), sizeof p);
+        int32_t hint = -1;
+        if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
+        if (s.interpolate(p, &hint, sh) != TP_OK && outside++ == 0) first_outside = i;
+        if (hints) std::memcpy(strided(hints, i, hint_stride), &hint, sizeof hint);
+        std::memcpy(strided(out_sh, i, sh_stride), sh, sizeof sh);
+    }
+    return report_outside(outside, count, first_outside);
+    TP_API_END
+}
+
+TP_API tp_status tp_store_weights(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                  uint32_t out_probes[4], float out_weights[4]) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(position);
+    TP_REQUIRE_NOT_NULL(out_probes);
+    TP_REQUIRE_NOT_NULL(out_weights);
+    if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
+    const Store& s = store_of(store);
+    const Location loc = s.locate(position, cell_hint ? *cell_hint : -1);
+    if (cell_hint) *cell_hint = loc.cell;
+    to_input_probes(s, loc, out_probes, out_weights);
+    if (loc.status != TP_OK) return fail(loc.status, kOutsideMessage);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, const float* positions,
+                                        size_t position_stride, int32_t* hints, size_t hint_stride,
+                                        uint32_t* out_probes, size_t probes_stride, float* out_weights,
+                                        size_t weights_stride) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    if (count == 0) return TP_OK;
+    TP_REQUIRE_NOT_NULL(positions);
+    TP_REQUIRE_NOT_NULL(out_probes);
+    TP_REQUIRE_NOT_NULL(out_weights);
+    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
+    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
+    probes_stride = resolve_stride(probes_stride, 4 * sizeof(uint32_t), "probes_stride");
+    weights_stride = resolve_stride(weights_stride, 4 * sizeof(float), "weights_stride");
+    require_finite_positions(positions, count, position_stride);
+    const Store& s = store_of(store);
+    size_t outside = 0, first_outside = 0;
+    for (size_t i = 0; i < count; ++i) {
+        float p[3];
+        std::memcpy(p, strided(positions, i, position_stride), sizeof p);
+        int32_t hint = -1;
+        if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
+        const Location loc = s.locate(p, hint);
+        if (loc.status != TP_OK && outside++ == 0) first_outside = i;
+        if (hints) std::memcpy(strided(hints, i, hint_stride), &loc.cell, sizeof loc.cell);
+        uint32_t probes[4];
+        float weights[4];
+        to_input_probes(s, loc, probes, weights);
+        std::memcpy(strided(out_probes, i, probes_stride), probes, sizeof probes);
+        std::memcpy(strided(out_weights, i, weights_stride), weights, sizeof weights);
+    }
+    return report_outside(outside, count, first_outside);
+    TP_API_END
+}
+
+TP_API tp_status tp_store_locate(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                 tp_location* location) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(position);
+    TP_REQUIRE_NOT_NULL(location);
+    if (location->struct_size < sizeof(uint32_t))
+        return fail(TP_ERROR_INVALID_ARGUMENT, "location->struct_size is not set (use sizeof(tp_location))");
+    if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
+    const Store& s = store_of(store);
+    const Location loc = s.locate(position, cell_hint ? *cell_hint : -1);
+    if (cell_hint) *cell_hint = loc.cell;
+    tp_location full;
+    std::memset(&full, 0, sizeof full);
+    full.struct_size = location->struct_size;
+    full.cell = loc.cell;
+    full.cell_kind = loc.kind;
+    full.steps = loc.steps;
+    full.fallback = loc.fallback ? 1u : 0u;
+    to_input_probes(s, loc, full.probes, full.weights);
+    full.t = loc.t;
+    copy_fitting_fields(location, full, location->struct_size);
+    if (loc.status != TP_OK) return fail(loc.status, kOutsideMessage);
+    return TP_OK;
+    TP_API_END
+}
+
+}  // extern "C"

@@ -1,0 +1,379 @@
+// The walk (a visibility walk over cell adjacency, Cupisz 2012). Inner cells decide in float from
+// their barycentric matrices, in the store's local frame; outer cells solve their cubic and
+// weigh the moved hull triangle in double. The walk never steps straight back to the cell it came
+// from, and after a step cap it hands the decision to an exhaustive search in double.
+#include "core/locate.h"
+
+#include "core/polynomial_roots.h"
+
+#include <cmath>
+#include <limits>
+
+namespace tetprobe {
+
+namespace {
+
+constexpr uint32_t kNoCell = 0xFFFFFFFFu;
+constexpr double kInsideToleranceD = double(kInsideTolerance);
+
+template <class Index>
+struct IndexTraits;
+template <>
+struct IndexTraits<uint16_t> {
+    static constexpr uint32_t none = kNone16;
+};
+template <>
+struct IndexTraits<uint32_t> {
+    static constexpr uint32_t none = kNone32;
+};
+
+// Typed views of a store's cell arrays.
+template <class Index>
+struct CellView {
+    const Store::Impl& s;
+    const Index* vertices;
+    const Index* neighbours;
+    explicit CellView(const Store::Impl& store)
+        : s(store),
+          vertices(static_cast<const Index*>(store.cell_vertices)),
+          neighbours(static_cast<const Index*>(store.cell_neighbours)) {}
+
+    uint32_t vertex(uint32_t cell, uint32_t slot) const { return vertices[4 * size_t(cell) + slot]; }
+    uint32_t neighbour(uint32_t cell, uint32_t slot) const {
+        const uint32_t n = neighbours[4 * size_t(cell) + slot];
+        return n == IndexTraits<Index>::none ? kNoCell : n;
+    }
+    uint32_t start_cell(const double p[3]) const {
+        const StoreHeader& h = s.header;
+        uint32_t index[3];
+        for (int k = 0; k < 3; ++k) {
+            const double extent = double(h.bounds_max[k]) - double(h.bounds_min[k]);
+            index[k] = 0;
+            if (extent > 0) {
+                const double f = (p[k] - double(h.bounds_min[k])) / extent * double(h.grid[k]);
+                if (f >= double(h.grid[k]))
+                    index[k] = h.grid[k] - 1;
+                else if (f > 0)
+                    index[k] = uint32_t(f);  // NaN fails both tests and stays 0
+            }
+        }
+        const size_t slot = (size_t(index[2]) * h.grid[1] + index[1]) * h.grid[0] + index[0];
+        return static_cast<const Index*>(s.grid_cells)[slot];
+    }
+};
+
+struct Vec3 {
+    double x, y, z;
+};
+Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
+double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+
+Vec3 probe_position(const Store::Impl& s, uint32_t probe) {
+    const float* p = s.positions + 3 * size_t(probe);
+    return {p[0], p[1], p[2]};
+}
+Vec3 probe_normal(const Store::Impl& s, uint32_t probe) {
+    const float* n = s.normals + 3 * size_t(probe);
+    return {n[0], n[1], n[2]};
+}
+
+// Barycentric weights of p on a segment (projected onto its line); NaN if degenerate.
+void segment_weights(Vec3 a, Vec3 b, Vec3 p, double w[2]) {
+    const Vec3 e = b - a;
+    const double length2 = dot(e, e);
+    w[1] = length2 > 0 ? dot(p - a, e) / length2 : std::numeric_limits<double>::quiet_NaN();
+    w[0] = 1.0 - w[1];
+}
+
+// Barycentric weights of p on a triangle (projected onto its plane); NaN if degenerate.
+void triangle_weights(Vec3 a, Vec3 b, Vec3 c, Vec3 p, double w[3]) {
+    const Vec3 n = cross(b - a, c - a);
+    const double n2 = dot(n, n);
+    if (!(n2 > 0)) {
+        w[0] = w[1] = w[2] = std::numeric_limits<double>::quiet_NaN();
+        return;
+    }
+    w[0] = dot(n, cross(b - p, c - p)) / n2;
+    w[1] = dot(n, cross(c - p, a - p)) / n2;
+    w[2] = 1.0 - w[0] - w[1];
+}
+
+// Barycentric weights of p in a tetrahedron; NaN if degenerate.
+void tetrahedron_weights(Vec3 a, Vec3 b, Vec3 c, Vec3 d, Vec3 p, double w[4]) {
+    const Vec3 e1 = b - a, e2 = c - a, e3 = d - a, q = p - a;
+    const double volume = dot(e1, cross(e2, e3));
+    if (volume == 0.0) {
+        w[0] = w[1] = w[2] = w[3] = std::numeric_limits<double>::quiet_NaN();
+        return;
+    }
+    w[1] = dot(q, cross(e2, e3)) / volume;
+    w[2] = dot(e1, cross(q, e3)) / volume;
+    w[3] = dot(e1, cross(e2, q)) / volume;
+    w[0] = 1.0 - w[1] - w[2] - w[3];
+}
+
+double minimum(const double* w, int n) {
+    double m = w[0];
+    for (int k = 1; k < n; ++k) m = w[k] < m ? w[k] : m;
+    return m;
+}
+
+bool all_finite(const double* w, int n) {
+    for (int k = 0; k < n; ++k)
+        if (!std::isfinite(w[k])) return false;
+    return true;
+}
+
+// An outer cell seen from p: the polynomial's coefficients, and the moved hull simplex that holds p.
+struct OuterView {
+    bool finite = true;
+    double f0 = 0;        // f(0) = c3: > 0 strictly beyond the hull facet
+    bool found = false;   // a parameter t was chosen
+    double t = 0;
+    double weights[3] = {0, 0, 0};  // over slots 0..d-1
+};
+
+template <class Index>
+// came_from_base: the walk arrived from the inner cell below, so a point on (or numerically just
+// inside) the hull facet is judged here at t = 0 instead of being sent back.
+OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, bool came_from_base) {
+    const Store::Impl& s = cells.s;
+    const uint32_t d = s.dimension;
+    const float* m = s.outer_matrices + 16 * size_t(cell - s.inner_cell_count);
+    double c[4];
+    for (int r = 0; r < 4; ++r) c[r] = m[4 * r] * p.x + m[4 * r + 1] * p.y + m[4 * r + 2] * p.z + double(m[4 * r + 3]);
+    OuterView v;
+    v.finite = all_finite(c, 4);
+    v.f0 = c[3];
+    if (!v.finite || (c[3] <= 0 && !came_from_base)) return v;  // not beyond the facet: the inner cell decides
+    if (d == 1) {
+        v.found = true;
+        v.t = c[3] > 0 ? c[3] : 0.0;
+        v.weights[0] = 1.0;
+        return v;
+    }
+    double candidates[3];
+    int count = 0;
+    if (c[3] <= 0) {
+        candidates[count++] = 0.0;
+    } else {
+        double roots[3];
+        const int n = cubic_real_roots(c[0], c[1], c[2], c[3], roots);
+        for (int i = 0; i < n; ++i)
+            if (roots[i] >= 0) candidates[count++] = roots[i];
+        if (count == 0) candidates[count++] = 0.0;  // the moving facet never meets p: judge at the hull
+    }
+    Vec3 corner[3], normal[3];
+    for (uint32_t k = 0; k < d; ++k) {
+        const uint32_t probe = cells.vertex(cell, k);
+        corner[k] = probe_position(s, probe);
+        normal[k] = probe_normal(s, probe);
+    }
+    double best_score = -std::numeric_limits<double>::infinity();
+    for (int i = 0; i < count; ++i) {
+        const double t = candidates[i];
+        double w[3];
+        if (d == 2)
+            segment_weights(corner[0] + t * normal[0], corner[1] + t * normal[1], p, w);
+        else
+            triangle_weights(corner[0] + t * normal[0], corner[1] + t * normal[1], corner[2] + t * normal[2], p, w);
+        if (!all_finite(w, int(d))) continue;
+        const double score = minimum(w, int(d));
+        if (score > best_score) {
+            best_score = score;
+            v.found = true;
+            v.t = t;
+            for (uint32_t k = 0; k < d; ++k) v.weights[k] = w[k];
+        }
+    }
+    return v;
+}
+
+// Fills the probes and weights of a location: negatives clamped to zero, renormalised to sum 1,
+// unused slots repeating slot 0 with weight 0.
+template <class Index>
+void set_weights(const CellView<Index>& cells, uint32_t cell, uint32_t used, const double* w, Location& loc) {
+    double clamped[4] = {0, 0, 0, 0};
+    double sum = 0;
+    for (uint32_t k = 0; k < used; ++k) {
+        clamped[k] = w[k] > 0 ? w[k] : 0.0;  // NaN becomes 0 too
+        sum += clamped[k];
+    }
+    if (!(sum > 0) || !std::isfinite(sum)) {
+        clamped[0] = 1.0;
+        for (uint32_t k = 1; k < used; ++k) clamped[k] = 0.0;
+        sum = 1.0;
+    }
+    for (uint32_t k = 0; k < 4; ++k) {
+        if (k < used) {
+            const double weight = clamped[k] / sum;
+            loc.probes[k] = cells.vertex(cell, k);
+            loc.weights[k] = float(weight < 1.0 ? weight : 1.0);
+        } else {
+            loc.probes[k] = cells.vertex(cell, 0);
+            loc.weights[k] = 0.0f;
+        }
+    }
+}
+
+// The slot to leave a cell through: the most negative coordinate whose neighbour is not the cell we
+// came from. Returns -1 when the only way out leads straight back (p sits on the shared face).
+template <class Index>
+int exit_slot(const CellView<Index>& cells, uint32_t cell, const double* w, uint32_t slots, uint32_t previous) {
+    int best = -1;
+    double best_value = -kInsideToleranceD;
+    for (uint32_t k = 0; k < slots; ++k) {
+        if (w[k] < best_value && cells.neighbour(cell, k) != previous) {
+            best_value = w[k];
+            best = int(k);
+        }
+    }
+    return best;
+}
+
+template <class Index>
+Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
+    const CellView<Index> cells(s);
+    const Vec3 p{local[0], local[1], local[2]};
+    const uint32_t d = s.dimension;
+    double best_score = -std::numeric_limits<double>::infinity();
+    uint32_t best_cell = 0;
+    double best_weights[4] = {1, 0, 0, 0};
+    double best_t = 0;
+    for (uint32_t cell = 0; cell < s.cell_count; ++cell) {
+        double w[4] = {0, 0, 0, 0};
+        double t = 0;
+        uint32_t used;
+        if (cell < s.inner_cell_count) {
+            used = d + 1;
+            Vec3 v[4];
+            for (uint32_t k = 0; k <= d; ++k) v[k] = probe_position(s, cells.vertex(cell, k));
+            if (d == 0)
+                w[0] = 1.0;
+            else if (d == 1)
+                segment_weights(v[0], v[1], p, w);
+            else if (d == 2)
+                triangle_weights(v[0], v[1], v[2], p, w);
+            else
+                tetrahedron_weights(v[0], v[1], v[2], v[3], p, w);
+        } else {
+            used = d;
+            const OuterView o = view_outer_cell(cells, cell, p, false);
+            if (!o.finite || !o.found || !(o.f0 > 0)) continue;
+            t = o.t;
+            for (uint32_t k = 0; k < d; ++k) w[k] = o.weights[k];
+        }
+        if (!all_finite(w, int(used))) continue;
+        const double score = minimum(w, int(used));
+        if (score > best_score) {
+            best_score = score;
+            best_cell = cell;
+            best_t = t;
+            for (int k = 0; k < 4; ++k) best_weights[k] = w[k];
+        }
+    }
+    Location loc;
+    loc.fallback = true;
+    loc.cell = int32_t(best_cell);
+    const bool outer = best_cell >= s.inner_cell_count;
+    loc.kind = outer ? TP_CELL_OUTER : TP_CELL_INNER;
+    if (s.cell_count == s.inner_cell_count && (s.header.flags & kFlagNoExtrapolation) && d > 0 &&
+        !(best_score >= -kInsideToleranceD)) {
+        loc.status = TP_ERROR_OUTSIDE;
+        return loc;
+    }
+    loc.t = float(best_t);
+    set_weights(cells, best_cell, outer ? d : d + 1, best_weights, loc);
+    return loc;
+}
+
+template <class Index>
+Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
+    const CellView<Index> cells(s);
+    double local[3];
+    float local_f[3];
+    for (int k = 0; k < 3; ++k) {
+        local[k] = double(world[k]) - s.origin[k];
+        local_f[k] = float(local[k]);
+    }
+    const Vec3 p{local[0], local[1], local[2]};
+    const uint32_t d = s.dimension;
+    uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(local);
+    uint32_t previous = kNoCell;
+    uint32_t steps = 0;
+    for (; steps <= s.step_cap; ++steps) {
+        Location loc;
+        loc.cell = int32_t(cell);
+        loc.steps = steps;
+        double w[4] = {0, 0, 0, 0};
+        int slot;
+        if (cell < s.inner_cell_count) {
+            const float* m = s.inner_matrices + 12 * size_t(cell);
+            float sum = 0.0f;
+            for (uint32_t k = 0; k < d; ++k) {
+                const float b = m[4 * k] * local_f[0] + m[4 * k + 1] * local_f[1] + m[4 * k + 2] * local_f[2] + m[4 * k + 3];
+                w[k] = b;
+                sum += b;
+            }
+            w[d] = 1.0f - sum;
+            if (!all_finite(w, int(d + 1))) break;
+            if (minimum(w, int(d + 1)) >= -kInsideToleranceD) {
+                set_weights(cells, cell, d + 1, w, loc);
+                return loc;
+            }
+            // Beyond a hull facet (a store without outer cells): outside, by convexity of the hull.
+            for (uint32_t k = 0; k <= d; ++k) {
+                if (w[k] < -kInsideToleranceD && cells.neighbour(cell, k) == kNoCell) {
+                    loc.status = TP_ERROR_OUTSIDE;
+                    return loc;
+                }
+            }
+            slot = exit_slot(cells, cell, w, d + 1, previous);
+            if (slot < 0) {
+                set_weights(cells, cell, d + 1, w, loc);
+                return loc;
+            }
+        } else {
+            const uint32_t base = cells.neighbour(cell, d);
+            const OuterView o = view_outer_cell(cells, cell, p, base == previous);
+            if (!o.finite) break;
+            if (o.f0 <= 0 && base != previous) {
+                previous = cell;
+                cell = base;
+                continue;
+            }
+            if (!o.found) break;
+            loc.kind = TP_CELL_OUTER;
+            loc.t = float(o.t);
+            if (minimum(o.weights, int(d)) >= -kInsideToleranceD) {
+                set_weights(cells, cell, d, o.weights, loc);
+                return loc;
+            }
+            slot = exit_slot(cells, cell, o.weights, d, previous);
+            if (slot < 0 || cells.neighbour(cell, uint32_t(slot)) == kNoCell) {
+                set_weights(cells, cell, d, o.weights, loc);
+                return loc;
+            }
+        }
+        previous = cell;
+        cell = cells.neighbour(cell, uint32_t(slot));
+    }
+    // Lost (a numerical cycle or an undecidable cell): decide over all cells in double.
+    Location loc = locate_exhaustive_typed<Index>(s, local);
+    loc.steps = steps;
+    return loc;
+}
+
+}  // namespace
+
+LocateFunction locate_function(bool index32) { return index32 ? &walk<uint32_t> : &walk<uint16_t>; }
+
+Location locate_exhaustive(const Store::Impl& store, const double local_position[3]) {
+    return store.index32 ? locate_exhaustive_typed<uint32_t>(store, local_position)
+                         : locate_exhaustive_typed<uint16_t>(store, local_position);
+}
+
+}  // namespace tetprobe

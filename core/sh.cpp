@@ -1,0 +1,91 @@
+#include "core/sh.h"
+
+namespace tetprobe {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// The contract's constants (capi/tetprobe.h) at full precision: sqrt(1/4pi), sqrt(3/4pi),
+// sqrt(15/4pi), sqrt(5/16pi), sqrt(15/16pi).
+constexpr double kY00 = 0.28209479177387814;
+constexpr double kY1 = 0.4886025119029199;
+constexpr double kY2 = 1.0925484305920792;
+constexpr double kY20 = 0.31539156525252005;
+constexpr double kY22 = 0.5462742152960396;
+
+constexpr int kBandOfCoefficient[9] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
+
+}  // namespace
+
+void sh_basis(double x, double y, double z, double out[9]) {
+    out[0] = kY00;
+    out[1] = kY1 * y;
+    out[2] = kY1 * z;
+    out[3] = kY1 * x;
+    out[4] = kY2 * x * y;
+    out[5] = kY2 * y * z;
+    out[6] = kY20 * (3.0 * z * z - 1.0);
+    out[7] = kY2 * x * z;
+    out[8] = kY22 * (x * x - y * y);
+}
+
+void sh_basis(float x, float y, float z, float out[9]) {
+    const float c00 = float(kY00), c1 = float(kY1), c2 = float(kY2), c20 = float(kY20), c22 = float(kY22);
+    out[0] = c00;
+    out[1] = c1 * y;
+    out[2] = c1 * z;
+    out[3] = c1 * x;
+    out[4] = c2 * x * y;
+    out[5] = c2 * y * z;
+    out[6] = c20 * (3.0f * z * z - 1.0f);
+    out[7] = c2 * x * z;
+    out[8] = c22 * (x * x - y * y);
+}
+
+double sh_cosine_lobe_band(int band) {
+    switch (band) {
+        case 0: return kPi;
+        case 1: return 2.0 * kPi / 3.0;
+        case 2: return kPi / 4.0;
+        default: return 0.0;
+    }
+}
+
+void sh_eval_radiance(const float sh[27], const float d[3], float out_rgb[3]) {
+    float basis[9];
+    sh_basis(d[0], d[1], d[2], basis);
+    for (int c = 0; c < 3; ++c) {
+        float sum = 0.0f;
+        for (int i = 0; i < 9; ++i) sum += sh[9 * c + i] * basis[i];
+        out_rgb[c] = sum;
+    }
+}
+
+void sh_eval_irradiance(const float sh[27], const float n[3], float out_rgb[3]) {
+    float basis[9];
+    sh_basis(n[0], n[1], n[2], basis);
+    for (int i = 0; i < 9; ++i) basis[i] *= float(sh_cosine_lobe_band(kBandOfCoefficient[i]));
+    for (int c = 0; c < 3; ++c) {
+        float sum = 0.0f;
+        for (int i = 0; i < 9; ++i) sum += sh[9 * c + i] * basis[i];
+        out_rgb[c] = sum;
+    }
+}
+
+void sh_add_ambient(float sh[27], const float rgb[3]) {
+    // Uniform radiance L projects onto Y00 only: L * 4pi * Y00 = L * 2 sqrt(pi).
+    const float scale = float(4.0 * kPi * kY00);
+    for (int c = 0; c < 3; ++c) sh[9 * c] += rgb[c] * scale;
+}
+
+void sh_add_directional(float sh[27], const float travel_direction[3], const float rgb[3]) {
+    // A delta of radiance from w = -travel_direction whose irradiance facing it is E projects to
+    // E * Y_i(w): the integral of the delta against each basis function.
+    double basis[9];
+    sh_basis(-double(travel_direction[0]), -double(travel_direction[1]), -double(travel_direction[2]), basis);
+    for (int c = 0; c < 3; ++c)
+        for (int i = 0; i < 9; ++i) sh[9 * c + i] += float(double(rgb[c]) * basis[i]);
+}
+
+}  // namespace tetprobe

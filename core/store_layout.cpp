@@ -1,0 +1,33 @@
+#include "core/store_layout.h"
+
+namespace tetprobe {
+
+namespace {
+
+bool multiply(uint64_t a, uint64_t b, uint64_t* out) { return !__builtin_mul_overflow(a, b, out); }
+
+}  // namespace
+
+bool expected_section_sizes(const StoreHeader& header, uint64_t sizes[kSectionCount]) {
+    if (header.inner_cell_count > header.cell_count) return false;
+    const uint64_t probes = header.probe_count;
+    const uint64_t cells = header.cell_count;
+    const uint64_t inner = header.inner_cell_count;
+    const uint64_t index_bytes = store_index_bytes(header.flags);
+    uint64_t grid_cells = 0;
+    if (!multiply(header.grid[0], header.grid[1], &grid_cells)) return false;
+    if (!multiply(grid_cells, header.grid[2], &grid_cells)) return false;
+
+    sizes[kSectionPositions] = probes * 3 * sizeof(float);
+    sizes[kSectionNormals] = probes * 3 * sizeof(float);
+    sizes[kSectionSh] = probes * 27 * sizeof(uint16_t);
+    sizes[kSectionProbeSource] = probes * sizeof(uint32_t);
+    sizes[kSectionInputRemap] = uint64_t(header.input_probe_count) * sizeof(uint32_t);
+    sizes[kSectionCellVertices] = cells * 4 * index_bytes;
+    sizes[kSectionCellNeighbours] = cells * 4 * index_bytes;
+    sizes[kSectionInnerMatrices] = inner * 12 * sizeof(float);
+    sizes[kSectionOuterMatrices] = (cells - inner) * 16 * sizeof(float);
+    return multiply(grid_cells, index_bytes, &sizes[kSectionGrid]);
+}
+
+}  // namespace tetprobe

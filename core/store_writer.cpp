@@ -1,0 +1,154 @@
+// write_store_blob: StoreData -> the version-1 blob laid out as store_format.h describes.
+#include "core/error.h"
+#include "core/half.h"
+#include "core/store.h"
+#include "core/store_data.h"
+#include "core/store_layout.h"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#if defined(__BYTE_ORDER__) && __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "the store blob is little-endian; this writer copies host memory as is"
+#endif
+
+namespace tetprobe {
+
+namespace {
+
+constexpr float kHalfMax = 65504.0f;
+
+void require(bool condition, const std::string& message) {
+    if (!condition) throw Error(TP_ERROR_INVALID_ARGUMENT, "store data: " + message);
+}
+
+void require_size(size_t actual, uint64_t expected, const char* what) {
+    require(actual == expected, std::string(what) + " has " + std::to_string(actual) + " values, expected " +
+                                    std::to_string(expected));
+}
+
+void require_finite(const std::vector<float>& values, const char* what) {
+    for (size_t i = 0; i < values.size(); ++i)
+        require(std::isfinite(values[i]), std::string(what) + "[" + std::to_string(i) + "] is not finite");
+}
+
+// Copies indices at the blob's width: 32-bit as is, 16-bit with the reserved values remapped.
+void write_indices(uint8_t* out, const std::vector<uint32_t>& indices, bool index32, const char* what) {
+    if (index32) {
+        if (!indices.empty()) std::memcpy(out, indices.data(), indices.size() * sizeof(uint32_t));
+        return;
+    }
+    for (size_t i = 0; i < indices.size(); ++i) {
+        const uint32_t value = indices[i];
+        uint16_t narrow;
+        if (value == kNone32)
+            narrow = uint16_t(kNone16);
+        else if (value == kOuter32)
+            narrow = uint16_t(kOuter16);
+        else {
+            require(value <= kMaxIndex16, std::string(what) + "[" + std::to_string(i) + "] = " +
+                                              std::to_string(value) + " does not fit a 16-bit index");
+            narrow = uint16_t(value);
+        }
+        std::memcpy(out + i * sizeof narrow, &narrow, sizeof narrow);
+    }
+}
+
+void write_sh(uint8_t* out, const std::vector<float>& sh) {
+    for (size_t i = 0; i < sh.size(); ++i) {
+        float value = sh[i];
+        require(std::isfinite(value), "sh[" + std::to_string(i) + "] is not finite");
+        value = std::fmax(-kHalfMax, std::fmin(kHalfMax, value));
+        const uint16_t half = float_to_half(value);
+        std::memcpy(out + i * sizeof half, &half, sizeof half);
+    }
+}
+
+}  // namespace
+
+std::vector<uint8_t> write_store_blob(const StoreData& data) {
+    const uint64_t probes = data.probe_source.size();
+    const uint64_t cells = data.cell_vertices.size() / 4;
+    require(probes >= 1, "no probes");
+    require(probes < kOuter32 && cells < kOuter32 && data.input_probe_count < kOuter32,
+            "counts do not fit 32-bit indices");
+    require(data.cell_vertices.size() % 4 == 0, "cell_vertices is not 4 per cell");
+    require(data.dimension <= 3, "dimension " + std::to_string(data.dimension) + " is above 3");
+    require(data.inner_cell_count <= cells, "inner_cell_count exceeds the cell count");
+    require_size(data.positions.size(), probes * 3, "positions");
+    require_size(data.normals.size(), probes * 3, "normals");
+    require_size(data.sh.size(), probes * 27, "sh");
+    require_size(data.input_remap.size(), data.input_probe_count, "input_remap");
+    require_size(data.cell_neighbours.size(), cells * 4, "cell_neighbours");
+    require_size(data.inner_matrices.size(), uint64_t(data.inner_cell_count) * 12, "inner_matrices");
+    require_size(data.outer_matrices.size(), (cells - data.inner_cell_count) * 16, "outer_matrices");
+    require_size(data.grid_cells.size(), uint64_t(data.grid[0]) * data.grid[1] * data.grid[2], "grid_cells");
+    require_finite(data.positions, "positions");
+    require_finite(data.normals, "normals");
+    require_finite(data.inner_matrices, "inner_matrices");
+    require_finite(data.outer_matrices, "outer_matrices");
+    for (int k = 0; k < 3; ++k)
+        require(std::isfinite(data.origin[k]) && std::isfinite(data.bounds_min[k]) &&
+                    std::isfinite(data.bounds_max[k]),
+                "origin or bounds not finite");
+
+    const bool index32 =
+        (data.flags & kFlagIndex32) || probes > kMaxIndex16 || cells > kMaxIndex16;
+
+    StoreHeader header;
+    std::memset(&header, 0, sizeof header);
+    std::memcpy(header.magic, kStoreMagic, sizeof header.magic);
+    header.format_version = kStoreFormatVersion;
+    header.header_size = uint32_t(kHeaderSize);
+    header.flags = (data.flags & kFlagNoExtrapolation) | (index32 ? kFlagIndex32 : 0u);
+    header.dimension = data.dimension;
+    header.probe_count = uint32_t(probes);
+    header.input_probe_count = data.input_probe_count;
+    header.cell_count = uint32_t(cells);
+    header.inner_cell_count = data.inner_cell_count;
+    for (int k = 0; k < 3; ++k) {
+        header.grid[k] = data.grid[k];
+        header.origin[k] = data.origin[k];
+        header.bounds_min[k] = data.bounds_min[k];
+        header.bounds_max[k] = data.bounds_max[k];
+    }
+    header.section_count = kSectionCount;
+
+    uint64_t sizes[kSectionCount];
+    require(expected_section_sizes(header, sizes), "section sizes overflow");
+    SectionEntry table[kSectionCount];
+    uint64_t end = kHeaderSize;
+    for (uint32_t s = 0; s < kSectionCount; ++s) {
+        table[s].offset = align_section_offset(end);
+        table[s].size = sizes[s];
+        end = table[s].offset + sizes[s];
+    }
+
+    std::vector<uint8_t> blob(end, 0);  // zero fill is the padding between sections
+    uint8_t* base = blob.data();
+    std::memcpy(base, &header, sizeof header);
+    std::memcpy(base + sizeof header, table, sizeof table);
+    auto copy_floats = [&](Section s, const std::vector<float>& v) {
+        if (!v.empty()) std::memcpy(base + table[s].offset, v.data(), v.size() * sizeof(float));
+    };
+    auto copy_words = [&](Section s, const std::vector<uint32_t>& v) {
+        if (!v.empty()) std::memcpy(base + table[s].offset, v.data(), v.size() * sizeof(uint32_t));
+    };
+    copy_floats(kSectionPositions, data.positions);
+    copy_floats(kSectionNormals, data.normals);
+    write_sh(base + table[kSectionSh].offset, data.sh);
+    copy_words(kSectionProbeSource, data.probe_source);
+    copy_words(kSectionInputRemap, data.input_remap);
+    write_indices(base + table[kSectionCellVertices].offset, data.cell_vertices, index32, "cell_vertices");
+    write_indices(base + table[kSectionCellNeighbours].offset, data.cell_neighbours, index32, "cell_neighbours");
+    copy_floats(kSectionInnerMatrices, data.inner_matrices);
+    copy_floats(kSectionOuterMatrices, data.outer_matrices);
+    write_indices(base + table[kSectionGrid].offset, data.grid_cells, index32, "grid_cells");
+
+    const uint64_t checksum = store_checksum(base, blob.size());
+    std::memcpy(base + kChecksumOffset, &checksum, sizeof checksum);
+    return blob;
+}
+
+}  // namespace tetprobe
