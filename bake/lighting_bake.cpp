@@ -1,0 +1,310 @@
+#include "bake/lighting_bake.h"
+
+#include "bake/ray_caster.h"
+#include "bake/sampling.h"
+#include "core/error.h"
+#include "core/sh.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
+
+namespace tetprobe {
+
+namespace {
+
+using Rgb = std::array<double, 3>;
+
+double dot3(const double a[3], const double b[3]) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
+
+// Light arriving at x from a delta light: the direction toward the light, the distance to it
+// (infinity for a directional light) and the irradiance on a surface facing it. False if none.
+bool light_arrival(const Light& light, const double local_position[3], const double x[3], double to_light[3],
+                   double* distance, Rgb* irradiance) {
+    double scale = light.intensity;
+    if (light.type == LightType::directional) {
+        for (int a = 0; a < 3; ++a) to_light[a] = -light.direction[a];
+        *distance = INFINITY;
+    } else {
+        double d[3] = {local_position[0] - x[0], local_position[1] - x[1], local_position[2] - x[2]};
+        double length = std::sqrt(dot3(d, d));
+        if (!(length > 0.0) || length > light.range) return false;
+        for (int a = 0; a < 3; ++a) to_light[a] = d[a] / length;
+        *distance = length;
+        scale /= length * length;
+        if (light.type == LightType::spot) {
+            double c = -dot3(to_light, light.direction.data());  // cosine from the spot's axis
+            if (c <= light.cos_outer) return false;
+            if (c < light.cos_inner) {
+                double t = (c - light.cos_outer) / (light.cos_inner - light.cos_outer);
+                scale *= t * t * (3.0 - 2.0 * t);
+            }
+        }
+    }
+    if (!(scale > 0.0)) return false;
+    for (int c = 0; c < 3; ++c) (*irradiance)[c] = light.color[c] * scale;
+    return (*irradiance)[0] > 0 || (*irradiance)[1] > 0 || (*irradiance)[2] > 0;
+}
+
+class Baker {
+public:
+    Baker(const Scene& scene, const std::vector<float>& positions, const BakeSettings& settings,
+          const EffectsPlan& plan)
+        : scene_(scene), settings_(settings), plan_(plan) {
+        const size_t count = positions.size() / 3;
+        for (size_t i = 0; i < positions.size(); ++i) origin_[i % 3] += double(positions[i]) / double(count);
+        caster_ = std::make_unique<RayCaster>(scene, origin_);
+        probes_.resize(positions.size());
+        for (size_t i = 0; i < positions.size(); ++i) probes_[i] = double(positions[i]) - origin_[i % 3];
+
+        // Offsets of ray origins off surfaces: relative to the extent of everything traced.
+        double extent = 0.0;
+        for (double p : probes_) extent = std::max(extent, std::abs(p));
+        for (const Mesh& mesh : scene.meshes())
+            for (int a = 0; a < 3; ++a)
+                extent = std::max({extent, std::abs(mesh.bounds_min[a] - origin_[a]),
+                                   std::abs(mesh.bounds_max[a] - origin_[a])});
+        epsilon_ = 1e-5 * std::max(extent, 1e-6);
+
+        for (const Light& light : scene.lights()) {
+            std::array<double, 3> p{};
+            for (int a = 0; a < 3; ++a) p[a] = light.position[a] - origin_[a];
+            light_positions_.push_back(p);
+        }
+        occlusion_set_.assign(scene.lights().size(), -1);
+        for (uint32_t l : plan.direct_lights)
+            if (settings.culling && scene.lights()[l].shadows && !scene.meshes().empty())
+                occlusion_set_[l] = int(caster_->add_occlusion_set(plan.occluders[l]));
+
+        for (size_t m = 0; m < scene.meshes().size(); ++m) {
+            const Mesh& mesh = scene.meshes()[m];
+            const std::vector<float>& v = caster_->local_vertices(uint32_t(m));
+            std::vector<float> normals(mesh.indices.size());
+            for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+                const uint32_t* tri = &mesh.indices[3 * t];
+                double e1[3], e2[3];
+                for (int a = 0; a < 3; ++a) {
+                    e1[a] = double(v[3 * tri[1] + a]) - v[3 * tri[0] + a];
+                    e2[a] = double(v[3 * tri[2] + a]) - v[3 * tri[0] + a];
+                }
+                double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+                double length = std::sqrt(dot3(n, n));
+                for (int a = 0; a < 3; ++a) normals[3 * t + a] = float(length > 0 ? n[a] / length : 0.0);
+            }
+            normals_.push_back(std::move(normals));
+        }
+    }
+
+    // The 27 SH floats of probe i; `rays` counts the rays traced.
+    void bake_probe(size_t i, float out[27], uint64_t* rays) const {
+        const double* x = &probes_[3 * i];
+        double sh[27] = {};
+        if (plan_.sampled()) sample_sphere(i, x, sh, rays);
+
+        // Delta lights: radiance arriving from direction w projects onto E * Y(w).
+        for (uint32_t l : plan_.direct_lights) {
+            const Light& light = scene_.lights()[l];
+            double w[3], distance;
+            Rgb e;
+            if (!light_arrival(light, light_positions_[l].data(), x, w, &distance, &e)) continue;
+            if (light.shadows && !scene_.meshes().empty()) {
+                ++*rays;
+                if (occluded(x, w, distance, occlusion_set_[l])) continue;
+            }
+            double basis[9];
+            sh_basis(w[0], w[1], w[2], basis);
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 9; ++k) sh[9 * c + k] += e[c] * basis[k];
+        }
+        for (int k = 0; k < 27; ++k) out[k] = float(sh[k]);
+    }
+
+    const RayCaster& caster() const { return *caster_; }
+
+private:
+    bool occluded(const double x[3], const double w[3], double distance, int set) const {
+        float o[3] = {float(x[0]), float(x[1]), float(x[2])}, d[3] = {float(w[0]), float(w[1]), float(w[2])};
+        float far = std::isinf(distance) ? INFINITY : float(distance - epsilon_);
+        if (!(far > 0.0f)) return false;
+        return caster_->occluded(o, d, 0.0f, far, set);
+    }
+
+    // Radiance of the sky arriving from direction w.
+    Rgb sky_radiance(const double w[3]) const {
+        Rgb l{0, 0, 0};
+        if (!plan_.sky) return l;
+        double basis[9];
+        sh_basis(w[0], w[1], w[2], basis);
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 9; ++k) l[c] += scene_.sky().sh[9 * c + k] * basis[k];
+        return l;
+    }
+
+    // Radiance arriving at x from direction w: emission and sky at the end of each path segment,
+    // lights by next-event estimation at each reflection, up to the plan's bounces.
+    Rgb trace(uint64_t probe, uint32_t ray, const double x[3], const double w[3], uint64_t* rays) const {
+        Rgb radiance{0, 0, 0}, throughput{1, 1, 1};
+        double origin[3] = {x[0], x[1], x[2]}, direction[3] = {w[0], w[1], w[2]};
+        for (uint32_t reflections = 0;; ++reflections) {
+            float o[3] = {float(origin[0]), float(origin[1]), float(origin[2])};
+            float d[3] = {float(direction[0]), float(direction[1]), float(direction[2])};
+            RayHit hit;
+            ++*rays;
+            if (!caster_->intersect(o, d, 0.0f, INFINITY, &hit)) {
+                Rgb sky = sky_radiance(direction);
+                for (int c = 0; c < 3; ++c) radiance[c] += throughput[c] * sky[c];
+                break;
+            }
+            const Mesh& mesh = scene_.meshes()[hit.mesh];
+            const Material& material = mesh.materials[mesh.triangle_materials[hit.triangle]];
+            const float* ng = &normals_[hit.mesh][3 * hit.triangle];
+            double n[3] = {ng[0], ng[1], ng[2]};
+            if (dot3(n, direction) > 0.0) {
+                if (!material.two_sided) break;  // the back of a one-sided surface is black
+                for (double& c : n) c = -c;
+            }
+            for (int c = 0; c < 3; ++c) radiance[c] += throughput[c] * material.emission[c];
+            if (reflections >= plan_.bounces || !material.reflective()) break;
+
+            double p[3];
+            for (int a = 0; a < 3; ++a) p[a] = origin[a] + direction[a] * hit.distance + n[a] * epsilon_;
+            for (uint32_t l : plan_.bounce_lights) {
+                const Light& light = scene_.lights()[l];
+                double to_light[3], distance;
+                Rgb e;
+                if (!light_arrival(light, light_positions_[l].data(), p, to_light, &distance, &e)) continue;
+                double cosine = dot3(n, to_light);
+                if (cosine <= 0.0) continue;
+                if (light.shadows) {
+                    ++*rays;
+                    if (occluded(p, to_light, distance, -1)) continue;
+                }
+                for (int c = 0; c < 3; ++c)
+                    radiance[c] += throughput[c] * material.albedo[c] / kPi * e[c] * cosine;
+            }
+            // Cosine-weighted continuation: the Lambertian weight albedo/pi * cos / pdf is the albedo.
+            for (int c = 0; c < 3; ++c) throughput[c] *= material.albedo[c];
+            const uint64_t dimension = 2 + 2 * uint64_t(reflections);
+            cosine_direction(n, sample_uniform(settings_.seed, probe, ray, dimension),
+                             sample_uniform(settings_.seed, probe, ray, dimension + 1), direction);
+            for (int a = 0; a < 3; ++a) origin[a] = p[a];
+        }
+        return radiance;
+    }
+
+    void sample_sphere(size_t probe, const double x[3], double sh[27], uint64_t* rays) const {
+        const uint32_t n = settings_.rays;
+        Eigen::Matrix<double, 9, 9> gram = Eigen::Matrix<double, 9, 9>::Zero();
+        Eigen::Matrix<double, 9, 3> projection = Eigen::Matrix<double, 9, 3>::Zero();
+        for (uint32_t r = 0; r < n; ++r) {
+            double w[3];
+            stratified_sphere_direction(settings_.seed, probe, r, n, w);
+            Rgb l = trace(probe, r, x, w, rays);
+            Eigen::Matrix<double, 9, 1> basis;
+            sh_basis(w[0], w[1], w[2], basis.data());
+            gram.noalias() += basis * basis.transpose();
+            for (int c = 0; c < 3; ++c) projection.col(c) += l[c] * basis;
+        }
+        const double weight = 4.0 * kPi / double(n);
+        gram *= weight;
+        projection *= weight;
+        // Least squares over the samples: the plain Monte Carlo projection corrected by the samples'
+        // Gram matrix, which removes the quadrature error inside the L2 span.
+        Eigen::Matrix<double, 9, 3> coefficients = projection;
+        if (n >= 16) {
+            Eigen::LDLT<Eigen::Matrix<double, 9, 9>> ldlt(gram);
+            if (ldlt.info() == Eigen::Success && ldlt.isPositive() && ldlt.vectorD().minCoeff() > 1e-3)
+                coefficients = ldlt.solve(projection);
+        }
+        for (int c = 0; c < 3; ++c)
+            for (int k = 0; k < 9; ++k) sh[9 * c + k] += coefficients(k, c);
+    }
+
+    const Scene& scene_;
+    const BakeSettings& settings_;
+    const EffectsPlan& plan_;
+    double origin_[3] = {0, 0, 0};
+    std::unique_ptr<RayCaster> caster_;
+    std::vector<double> probes_;  // local
+    double epsilon_ = 0;
+    std::vector<std::array<double, 3>> light_positions_;  // local
+    std::vector<int> occlusion_set_;                      // per light, -1 = every mesh
+    std::vector<std::vector<float>> normals_;             // per mesh, 3 per kept triangle, unit
+};
+
+}  // namespace
+
+std::vector<float> bake_lighting(const Scene& scene, const std::vector<float>& positions,
+                                 const BakeSettings& settings, EffectsPlan* plan_out, BakeStats* stats) {
+    const size_t count = positions.size() / 3;
+    if (count == 0) throw Error(TP_ERROR_DEGENERATE, "no probe positions to bake");
+    if (scene.empty()) throw Error(TP_ERROR_SCENE, "the scene is empty (no mesh, light or sky)");
+    for (float p : positions)
+        if (!std::isfinite(p)) throw Error(TP_ERROR_INVALID_ARGUMENT, "a probe position is not finite");
+    if (settings.rays == 0) throw Error(TP_ERROR_INVALID_ARGUMENT, "rays must be at least 1");
+
+    const EffectsPlan plan = derive_effects_plan(scene, positions, settings.bounces, settings.culling);
+    if (plan_out) *plan_out = plan;
+    const Baker baker(scene, positions, settings, plan);
+
+    size_t threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
+    threads = std::min(threads, count);
+    std::vector<float> sh(27 * count);
+    std::atomic<size_t> next{0}, done{0};
+    std::atomic<bool> stop{false};
+    std::atomic<uint64_t> rays{0};
+    std::mutex mutex;
+    std::condition_variable progressed;
+    std::exception_ptr failure;
+
+    const auto start = std::chrono::steady_clock::now();
+    auto work = [&]() {
+        uint64_t traced = 0;
+        try {
+            for (size_t i; !stop.load(std::memory_order_relaxed) && (i = next.fetch_add(1)) < count;) {
+                baker.bake_probe(i, &sh[27 * i], &traced);
+                done.fetch_add(1);
+                progressed.notify_one();
+            }
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex);
+            if (!failure) failure = std::current_exception();
+            stop = true;
+        }
+        rays.fetch_add(traced);
+        progressed.notify_one();
+    };
+    std::vector<std::thread> pool;
+    for (size_t t = 0; t < threads; ++t) pool.emplace_back(work);
+
+    // The calling thread reports progress, so callbacks never run on a worker.
+    bool cancelled = false;
+    while (true) {
+        size_t finished = done.load();
+        if (settings.progress && !cancelled &&
+            settings.progress(settings.progress_user, float(double(finished) / double(count)), "bake") != 0) {
+            cancelled = true;
+            stop = true;
+        }
+        if (finished == count || stop.load()) break;
+        std::unique_lock<std::mutex> lock(mutex);
+        progressed.wait_for(lock, std::chrono::milliseconds(50));
+    }
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    if (cancelled) throw Error(TP_ERROR_CANCELLED, "the bake was cancelled by the progress callback");
+    if (stats) {
+        stats->rays_cast = rays.load();
+        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    return sh;
+}
+
+}  // namespace tetprobe

@@ -1,0 +1,39 @@
+// The lighting bake: per probe, the L2 SH of incoming radiance (27 floats, channel-major), simulating
+// only what the effects plan calls for.
+#pragma once
+
+#include "bake/effects_plan.h"
+#include "bake/scene.h"
+
+#include <cstdint>
+#include <vector>
+
+namespace tetprobe {
+
+struct BakeSettings {
+    uint32_t rays = 256;     // sampled directions per probe
+    uint32_t bounces = 2;    // surface reflections between an emitter and the probe
+    uint64_t seed = 0;
+    uint32_t threads = 0;    // 0 = all cores
+    bool culling = true;     // false: every mesh occludes every light (test aid)
+    tp_progress_fn progress = nullptr;
+    void* progress_user = nullptr;
+};
+
+struct BakeStats {
+    uint64_t rays_cast = 0;  // closest-hit and occlusion rays traced through Embree
+    double seconds = 0;      // wall time of the tracing (not of building the ray-casting scenes)
+};
+
+// Bakes the probes at `positions` (3 floats each, world units) and returns 27 floats per probe.
+// Delta lights in the plan's direct set are projected analytically with one shadow ray; the sphere
+// of directions is sampled (stratified, deterministic per seed, probe and ray) for sky, emission
+// and bounces, which are path traced with next-event estimation of the lights. The projection
+// solves the least-squares fit of the samples (their Gram matrix), so radiance that is itself in
+// the L2 span, such as a uniform or SH sky, comes out exact. Results do not depend on the thread
+// count. A progress callback that returns non-zero throws Error(TP_ERROR_CANCELLED).
+std::vector<float> bake_lighting(const Scene& scene, const std::vector<float>& positions,
+                                 const BakeSettings& settings, EffectsPlan* plan_out = nullptr,
+                                 BakeStats* stats = nullptr);
+
+}  // namespace tetprobe

@@ -1,0 +1,56 @@
+// Ray casting for the bake with Embree 3: one scene of every mesh for path segments, and per
+// shadowing light an occlusion scene holding only the meshes that can shadow the probes from it.
+// Coordinates are local (world minus an origin) floats; the caster is read-only once built, so
+// any number of threads may cast rays through it at once.
+#pragma once
+
+#include "bake/scene.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace tetprobe {
+
+struct RayHit {
+    uint32_t mesh = 0;
+    uint32_t triangle = 0;  // index among the mesh's kept triangles
+    float distance = 0;
+};
+
+class RayCaster {
+public:
+    // Builds the scene of all meshes, translated by -origin. Throws Error(TP_ERROR_INTERNAL) if Embree
+    // fails (the message is Embree's).
+    RayCaster(const Scene& scene, const double origin[3]);
+    ~RayCaster();
+    RayCaster(const RayCaster&) = delete;
+    RayCaster& operator=(const RayCaster&) = delete;
+
+    // Adds an occlusion scene of only `meshes` and returns its index for occluded().
+    uint32_t add_occlusion_set(const std::vector<uint32_t>& meshes);
+
+    // Closest hit along origin + t * direction for t in (t_near, t_far); false if none.
+    bool intersect(const float origin[3], const float direction[3], float t_near, float t_far, RayHit* hit) const;
+
+    // True if something blocks the open segment (t_near, t_far). occlusion_set < 0: every mesh.
+    bool occluded(const float origin[3], const float direction[3], float t_near, float t_far,
+                  int occlusion_set) const;
+
+    // The local vertices of a mesh (3 per vertex) and its kept triangles (3 indices each).
+    const std::vector<float>& local_vertices(uint32_t mesh) const { return meshes_[mesh].vertices; }
+
+private:
+    struct MeshBuffers {
+        std::vector<float> vertices;   // local, padded for Embree's 16-byte loads
+        std::vector<uint32_t> indices;
+    };
+    void* new_scene(const std::vector<uint32_t>& meshes);  // RTCScene
+
+    void* device_ = nullptr;             // RTCDevice
+    void* all_ = nullptr;                // RTCScene of every mesh
+    std::vector<void*> occlusion_sets_;  // RTCScene each
+    std::vector<MeshBuffers> meshes_;
+};
+
+}  // namespace tetprobe

@@ -1,0 +1,106 @@
+// The scene a lighting bake reads: triangle meshes with materials, lights, a sky and probe positions.
+// Everything is validated when added, so a bake never sees a NaN, an index out of range or a
+// degenerate triangle; messages name what is wrong and where (mesh, triangle, vertex, light).
+#pragma once
+
+#include "capi/tetprobe.h"
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tetprobe {
+
+struct Material {
+    std::array<float, 3> albedo{{0.8f, 0.8f, 0.8f}};  // Lambertian reflectance in [0, 1]
+    std::array<float, 3> emission{{0.0f, 0.0f, 0.0f}};  // emitted radiance, >= 0
+    bool two_sided = false;                              // one-sided faces are black from behind
+
+    bool emissive() const { return emission[0] > 0 || emission[1] > 0 || emission[2] > 0; }
+    bool reflective() const { return albedo[0] > 0 || albedo[1] > 0 || albedo[2] > 0; }
+};
+
+struct Mesh {
+    std::string label;                         // "mesh 2 ('floor')": used in messages
+    std::vector<float> vertices;               // 3 per vertex, world units
+    std::vector<uint32_t> indices;             // 3 per kept triangle
+    std::vector<uint32_t> triangle_materials;  // one per kept triangle, into materials
+    std::vector<Material> materials;
+    uint32_t dropped_triangles = 0;            // zero-area triangles left out
+    std::array<float, 3> bounds_min{}, bounds_max{};
+
+    size_t triangle_count() const { return indices.size() / 3; }
+    bool emissive() const;    // some kept triangle emits
+    bool reflective() const;  // some kept triangle has a non-zero albedo
+};
+
+enum class LightType { directional, point, spot };
+
+struct Light {
+    LightType type = LightType::point;
+    bool realtime = false;  // only its bounced light is baked
+    bool shadows = true;
+    std::array<float, 3> color{{1, 1, 1}};
+    float intensity = 1.0f;                     // directional: irradiance; point, spot: radiant intensity
+    std::array<double, 3> position{{0, 0, 0}};  // point, spot
+    std::array<double, 3> direction{{0, -1, 0}};// directional, spot: unit, the direction light travels
+    double range = 0;                           // point, spot: no light beyond (infinity = unlimited)
+    double cos_inner = 1, cos_outer = 0;        // spot: cosines of the half angles of the cones
+
+    bool positional() const { return type != LightType::directional; }
+};
+
+enum class SkyKind { none, color, sh };
+
+struct Sky {
+    SkyKind kind = SkyKind::none;
+    std::array<float, 27> sh{};  // radiance as SH (a colour is its constant term)
+
+    bool black() const;
+};
+
+class Scene {
+public:
+    // Validates and adds a mesh; returns its index. label_prefix names the mesh in messages (for
+    // example "scene.json: mesh 2 ('floor')"); empty means "mesh N". NaN vertices, indices or
+    // triangle materials out of range, invalid materials and meshes without a single non-degenerate
+    // triangle throw Error(TP_ERROR_SCENE); zero-area triangles are dropped and counted.
+    uint32_t add_mesh(const float* vertices, size_t vertex_count, const uint32_t* indices,
+                      size_t triangle_count, const std::vector<Material>& materials,
+                      const uint32_t* triangle_materials, const std::string& label = "");
+    // Validates and adds a light (non-negative finite intensity and colour, unit direction, positive
+    // range, spot angles ordered); returns its index. label names it in messages.
+    uint32_t add_light(const tp_light& light, const std::string& label = "");
+    void set_sky_color(const float rgb[3]);
+    void set_sky_sh(const float sh[27]);
+    void set_probes(const float* positions, size_t count, size_t stride_bytes = 0);
+
+    const std::vector<Mesh>& meshes() const { return meshes_; }
+    const std::vector<Light>& lights() const { return lights_; }
+    const Sky& sky() const { return sky_; }
+    const std::vector<float>& probes() const { return probes_; }
+    size_t probe_count() const { return probes_.size() / 3; }
+    uint32_t dropped_triangles() const;
+    // True when there is nothing that emits light or occludes it: no mesh, no light, no sky.
+    bool empty() const { return meshes_.empty() && lights_.empty() && sky_.kind == SkyKind::none; }
+
+private:
+    std::vector<Mesh> meshes_;
+    std::vector<Light> lights_;
+    Sky sky_;
+    std::vector<float> probes_;
+};
+
+// Checks a material, throwing Error(TP_ERROR_SCENE) naming `where` when it is invalid.
+void validate_material(const Material& material, const std::string& where);
+
+// The defaults of tp_material_init and tp_light_init: grey one-sided material; white baked
+// shadowing point light of intensity 1, unlimited range, spot cones 30 and 45 degrees.
+tp_material default_c_material();
+tp_light default_c_light();
+
+// Converts a C material (struct_size must be set) to a Material.
+Material material_from_c(const tp_material& material, const std::string& where);
+
+}  // namespace tetprobe

@@ -1,0 +1,16 @@
+// Scene files: JSON (nlohmann-json) with meshes inline or from OBJ files (tinyobjloader) relative
+// to the JSON file, lights, a sky and probe positions. The format is documented in scene_file.cpp.
+#pragma once
+
+#include "bake/scene.h"
+
+#include <string>
+
+namespace tetprobe {
+
+// Loads a scene file. A file that cannot be read throws Error(TP_ERROR_IO); malformed JSON, an
+// unknown key, a value of the wrong type and every invalid value throw Error(TP_ERROR_SCENE) with a
+// message naming the file, the mesh or light and the index.
+Scene load_scene_file(const std::string& path);
+
+}  // namespace tetprobe

@@ -1,0 +1,247 @@
+// Scenes, the effects plan and the lighting bake (full library only).
+#include "boundary.h"
+
+#include "bake/effects_plan.h"
+#include "bake/lighting_bake.h"
+#include "bake/scene.h"
+#include "bake/scene_file.h"
+
+#include <cmath>
+#include <cstring>
+#include <string>
+
+struct tp_scene {
+    tetprobe::Scene scene;
+};
+
+using tetprobe::fail;
+
+namespace {
+
+tp_status read_positions(const float* positions, size_t stride, size_t count, std::vector<float>& out) {
+    if (count > 0 && !positions) return fail(TP_ERROR_INVALID_ARGUMENT, "positions is NULL");
+    if (stride == 0) stride = 3 * sizeof(float);
+    if (stride < 3 * sizeof(float)) return fail(TP_ERROR_INVALID_ARGUMENT, "position_stride is below 12 bytes");
+    if (count == 0) return fail(TP_ERROR_DEGENERATE, "no probe positions (count is 0)");
+    out.resize(3 * count);
+    for (size_t i = 0; i < count; ++i) {
+        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const char*>(positions) + i * stride);
+        for (int a = 0; a < 3; ++a) {
+            if (!std::isfinite(p[a]))
+                return fail(TP_ERROR_INVALID_ARGUMENT, "position " + std::to_string(i) + " is not finite");
+            out[3 * i + a] = p[a];
+        }
+    }
+    return TP_OK;
+}
+
+tp_status read_options(const tp_bake_options* options, tetprobe::BakeSettings& settings) {
+    if (!options) return TP_OK;
+    if (options->struct_size < sizeof(tp_bake_options))
+        return fail(TP_ERROR_INVALID_ARGUMENT, "options->struct_size is not set (call tp_bake_options_init)");
+    if (options->flags & ~uint32_t(TP_BAKE_NO_CULLING))
+        return fail(TP_ERROR_INVALID_ARGUMENT, "unknown bake flags " + std::to_string(options->flags));
+    if (options->rays == 0) return fail(TP_ERROR_INVALID_ARGUMENT, "options->rays must be at least 1");
+    settings.rays = options->rays;
+    settings.bounces = options->bounces;
+    settings.seed = options->seed;
+    settings.threads = options->threads;
+    settings.culling = !(options->flags & TP_BAKE_NO_CULLING);
+    settings.progress = options->progress;
+    settings.progress_user = options->progress_user;
+    return TP_OK;
+}
+
+}  // namespace
+
+extern "C" {
+
+TP_API tp_status tp_material_init(tp_material* material) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(material);
+    *material = tetprobe::default_c_material();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_light_init(tp_light* light) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(light);
+    *light = tetprobe::default_c_light();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_create(tp_scene** out_scene) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(out_scene);
+    *out_scene = nullptr;
+    *out_scene = new tp_scene();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_release(tp_scene* scene) {
+    TP_API_BEGIN
+    delete scene;
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_load_file(const char* path, tp_scene** out_scene) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(path);
+    TP_REQUIRE_NOT_NULL(out_scene);
+    *out_scene = nullptr;
+    tetprobe::Scene loaded = tetprobe::load_scene_file(path);
+    *out_scene = new tp_scene{std::move(loaded)};
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_add_mesh(tp_scene* scene, const float* vertices, size_t vertex_count,
+                                   const uint32_t* indices, size_t triangle_count,
+                                   const tp_material* materials, size_t material_count,
+                                   const uint32_t* triangle_materials, uint32_t* out_mesh) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(vertices);
+    TP_REQUIRE_NOT_NULL(indices);
+    TP_REQUIRE_NOT_NULL(materials);
+    if (material_count == 0) return fail(TP_ERROR_INVALID_ARGUMENT, "material_count is 0");
+    const std::string label = "mesh " + std::to_string(scene->scene.meshes().size());
+    std::vector<tetprobe::Material> converted;
+    for (size_t m = 0; m < material_count; ++m)
+        converted.push_back(tetprobe::material_from_c(materials[m], label + ", material " + std::to_string(m)));
+    uint32_t index = scene->scene.add_mesh(vertices, vertex_count, indices, triangle_count, converted,
+                                           triangle_materials, label);
+    if (out_mesh) *out_mesh = index;
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_add_light(tp_scene* scene, const tp_light* light, uint32_t* out_light) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(light);
+    uint32_t index = scene->scene.add_light(*light);
+    if (out_light) *out_light = index;
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_set_sky_color(tp_scene* scene, const float rgb[3]) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(rgb);
+    scene->scene.set_sky_color(rgb);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_set_sky_sh(tp_scene* scene, const float sh[27]) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(sh);
+    scene->scene.set_sky_sh(sh);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_probes(const tp_scene* scene, const float** out_positions, size_t* out_count) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(out_positions);
+    TP_REQUIRE_NOT_NULL(out_count);
+    *out_positions = scene->scene.probes().data();
+    *out_count = scene->scene.probe_count();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_set_probes(tp_scene* scene, const float* positions, size_t count) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    if (count > 0) TP_REQUIRE_NOT_NULL(positions);
+    scene->scene.set_probes(positions, count);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_bake_options_init(tp_bake_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(options);
+    std::memset(options, 0, sizeof *options);
+    options->struct_size = sizeof(tp_bake_options);
+    const tetprobe::BakeSettings defaults;
+    options->rays = defaults.rays;
+    options->bounces = defaults.bounces;
+    options->seed = defaults.seed;
+    options->threads = defaults.threads;
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, size_t position_stride,
+                              size_t count, const tp_bake_options* options, tp_effects_plan* plan,
+                              char* text, size_t text_capacity) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(plan);
+    if (plan->struct_size < sizeof(tp_effects_plan))
+        return fail(TP_ERROR_INVALID_ARGUMENT, "plan->struct_size is not set to sizeof(tp_effects_plan)");
+    if (text && text_capacity > 0) text[0] = '\0';
+    tetprobe::BakeSettings settings;
+    if (tp_status s = read_options(options, settings)) return s;
+    std::vector<float> probes;
+    if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
+    if (scene->scene.empty()) return fail(TP_ERROR_SCENE, "the scene is empty (no mesh, light or sky)");
+
+    const tetprobe::EffectsPlan derived =
+        tetprobe::derive_effects_plan(scene->scene, probes, settings.bounces, settings.culling);
+    tp_effects_plan out{};
+    out.struct_size = sizeof(tp_effects_plan);
+    out.lights = derived.lights;
+    out.direct_lights = uint32_t(derived.direct_lights.size());
+    out.realtime_lights = derived.realtime_lights;
+    out.out_of_range_lights = derived.out_of_range_lights;
+    out.sky = derived.sky ? 1 : 0;
+    out.emissive_meshes = uint32_t(derived.emissive_meshes.size());
+    out.bounces = derived.bounces;
+    out.shadows = derived.shadows ? 1 : 0;
+    out.meshes = derived.meshes;
+    out.shadow_casters = derived.shadow_casters;
+    out.shadow_caster_candidates = derived.shadow_caster_candidates;
+    *plan = out;
+
+    if (text) {
+        const std::string summary = derived.summary();
+        if (summary.size() + 1 > text_capacity)
+            return fail(TP_ERROR_BUFFER_TOO_SMALL, "the summary needs " + std::to_string(summary.size() + 1) +
+                                                       " bytes, text_capacity is " + std::to_string(text_capacity));
+        std::memcpy(text, summary.c_str(), summary.size() + 1);
+    }
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t position_stride, size_t count,
+                         const tp_bake_options* options, float* out_sh, size_t sh_stride) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(out_sh);
+    if (sh_stride == 0) sh_stride = 27 * sizeof(float);
+    if (sh_stride < 27 * sizeof(float)) return fail(TP_ERROR_INVALID_ARGUMENT, "sh_stride is below 108 bytes");
+    tetprobe::BakeSettings settings;
+    if (tp_status s = read_options(options, settings)) return s;
+    std::vector<float> probes;
+    if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
+
+    const std::vector<float> sh = tetprobe::bake_lighting(scene->scene, probes, settings);
+    for (size_t i = 0; i < count; ++i)
+        std::memcpy(reinterpret_cast<char*>(out_sh) + i * sh_stride, &sh[27 * i], 27 * sizeof(float));
+    return TP_OK;
+    TP_API_END
+}
+
+}  // extern "C"
