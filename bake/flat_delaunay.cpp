@@ -1,0 +1,55 @@
+#include "bake/flat_delaunay.h"
+
+#include "bake/delaunay.h"
+#include "core/error.h"
+
+#include <algorithm>
+
+namespace tetprobe {
+
+SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
+    if (uv.size() < 3) throw Error(TP_ERROR_INTERNAL, "triangulation needs at least 3 points");
+    Eigen::Vector2d lo = uv[0], hi = uv[0], centroid = Eigen::Vector2d::Zero();
+    for (const auto& p : uv) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+        centroid += p;
+    }
+    centroid /= double(uv.size());
+    const double height = (hi - lo).norm();
+
+    std::vector<Eigen::Vector3d> points;
+    points.reserve(uv.size() + 1);
+    for (const auto& p : uv) points.emplace_back(p.x(), p.y(), 0.0);
+    const uint32_t apex = uint32_t(uv.size());
+    points.emplace_back(centroid.x(), centroid.y(), height);
+
+    const SimplexMesh tets = delaunay_tetrahedralize(points);
+
+    // Tetrahedron t becomes triangle t: drop the apex slot and keep the other three in order, with
+    // their neighbours (the neighbour across the facet opposite a base vertex is the tetrahedron over
+    // the adjacent triangle; the one opposite the apex is outside the pyramid).
+    SimplexMesh mesh;
+    mesh.dimension = 2;
+    mesh.vertices.reserve(tets.cell_count());
+    mesh.neighbours.reserve(tets.cell_count());
+    for (size_t t = 0; t < tets.cell_count(); ++t) {
+        const CellSlots& v = tets.vertices[t];
+        const auto apex_slot = std::find(v.begin(), v.end(), apex) - v.begin();
+        if (apex_slot == 4) {
+            throw Error(TP_ERROR_TETGEN, "TetGen returned a flat tetrahedron in a plane triangulation");
+        }
+        CellSlots vertices = kNoSlots, neighbours = kNoSlots;
+        int slot = 0;
+        for (int k = 0; k < 4; ++k) {
+            if (k == apex_slot) continue;
+            vertices[size_t(slot)] = v[size_t(k)];
+            neighbours[size_t(slot)] = tets.neighbours[t][size_t(k)];
+            ++slot;
+        }
+        mesh.add_cell(vertices, neighbours);
+    }
+    return mesh;
+}
+
+}  // namespace tetprobe

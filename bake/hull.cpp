@@ -1,0 +1,103 @@
+#include "bake/hull.h"
+
+#include "core/error.h"
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <utility>
+
+namespace tetprobe {
+
+namespace {
+
+// Angle at corner a of triangle (a, b, c).
+double corner_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const Eigen::Vector3d u = b - a, v = c - a;
+    return std::atan2(u.cross(v).norm(), u.dot(v));
+}
+
+void add_facets_3d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, Hull& hull) {
+    static const int kOthers[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+    for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
+        for (uint32_t k = 0; k < 4; ++k) {
+            if (mesh.neighbours[c][k] != kNone32) continue;
+            const CellSlots& v = mesh.vertices[c];
+            uint32_t a = v[size_t(kOthers[k][0])], b = v[size_t(kOthers[k][1])], d = v[size_t(kOthers[k][2])];
+            const Eigen::Vector3d normal = (p[b] - p[a]).cross(p[d] - p[a]);
+            if (normal.dot(p[v[k]] - p[a]) > 0) std::swap(b, d);
+            HullFacet facet;
+            facet.probes = {a, b, d, kNone32};
+            facet.inner_cell = c;
+            facet.inner_slot = k;
+            hull.facets.push_back(facet);
+        }
+    }
+    for (const HullFacet& f : hull.facets) {
+        const uint32_t a = f.probes[0], b = f.probes[1], d = f.probes[2];
+        const Eigen::Vector3d normal = (p[b] - p[a]).cross(p[d] - p[a]);
+        const double length = normal.norm();
+        if (!(length > 0)) continue;  // a zero-area facet has no direction to contribute
+        const Eigen::Vector3d unit = normal / length;
+        hull.vertex_normals[a] += corner_angle(p[a], p[b], p[d]) * unit;
+        hull.vertex_normals[b] += corner_angle(p[b], p[d], p[a]) * unit;
+        hull.vertex_normals[d] += corner_angle(p[d], p[a], p[b]) * unit;
+    }
+}
+
+void add_facets_2d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& n,
+                   Hull& hull) {
+    for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
+        for (uint32_t k = 0; k < 3; ++k) {
+            if (mesh.neighbours[c][k] != kNone32) continue;
+            const CellSlots& v = mesh.vertices[c];
+            uint32_t a = v[(k + 1) % 3], b = v[(k + 2) % 3];
+            const uint32_t opposite = v[k];
+            if (n.cross(p[b] - p[a]).dot(p[opposite] - p[a]) > 0) std::swap(a, b);
+            HullFacet facet;
+            facet.probes = {a, b, kNone32, kNone32};
+            facet.inner_cell = c;
+            facet.inner_slot = k;
+            hull.facets.push_back(facet);
+            const Eigen::Vector3d outward = n.cross(p[b] - p[a]).normalized();
+            hull.vertex_normals[a] += outward;
+            hull.vertex_normals[b] += outward;
+        }
+    }
+}
+
+void add_facets_1d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& u,
+                   Hull& hull) {
+    for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
+        for (uint32_t k = 0; k < 2; ++k) {
+            if (mesh.neighbours[c][k] != kNone32) continue;
+            const uint32_t end = mesh.vertices[c][1 - k], inner = mesh.vertices[c][k];
+            HullFacet facet;
+            facet.probes = {end, kNone32, kNone32, kNone32};
+            facet.inner_cell = c;
+            facet.inner_slot = k;
+            hull.facets.push_back(facet);
+            hull.vertex_normals[end] = (p[end] - p[inner]).dot(u) > 0 ? u : Eigen::Vector3d(-u);
+        }
+    }
+}
+
+}  // namespace
+
+Hull find_hull(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& positions, const SetShape& shape) {
+    Hull hull;
+    hull.vertex_normals.assign(positions.size(), Eigen::Vector3d::Zero());
+    switch (mesh.dimension) {
+        case 3: add_facets_3d(mesh, positions, hull); break;
+        case 2: add_facets_2d(mesh, positions, shape.axes.col(2), hull); break;
+        case 1: add_facets_1d(mesh, positions, shape.axes.col(0), hull); break;
+        default: return hull;
+    }
+    for (auto& normal : hull.vertex_normals) {
+        const double length = normal.norm();
+        if (length > 0) normal /= length;
+    }
+    return hull;
+}
+
+}  // namespace tetprobe

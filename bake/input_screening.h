@@ -1,0 +1,27 @@
+// Input screening: the first stage of a build, so that nothing downstream (least of all TetGen,
+// which aborts the process on NaN, Inf or degenerate input) ever sees a value it cannot handle.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstddef>
+#include <vector>
+
+namespace tetprobe {
+
+// Largest coordinate magnitude accepted: far beyond any world, small enough that squared distances
+// and cross products stay finite in double.
+constexpr double kMaxCoordinate = 1e30;
+
+struct ScreenedProbes {
+    std::vector<Eigen::Vector3d> positions;  // world, as given
+    std::vector<float> sh;                   // 27 per probe (zeros when no SH was given)
+};
+
+// Copies strided positions and SH, throwing Error(TP_ERROR_DEGENERATE) for zero probes and
+// Error(TP_ERROR_INVALID_ARGUMENT) naming the probe and coordinate for NaN, Inf, |x| > kMaxCoordinate,
+// a non-finite SH coefficient, or a count no index width can hold.
+ScreenedProbes screen_probe_input(const float* positions, size_t position_stride, const float* sh,
+                                  size_t sh_stride, size_t count);
+
+}  // namespace tetprobe

@@ -1,0 +1,35 @@
+// Dimension of a probe set: point, line, flat or general. A set thinner than the flat tolerance is
+// triangulated in its best-fit plane (or along its best-fit line) instead of being handed to TetGen,
+// which crashes on coplanar and collinear input and builds zero-volume cells from nearly coplanar one.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+namespace tetprobe {
+
+struct SetShape {
+    uint32_t dimension = 0;   // 0 point, 1 line, 2 flat, 3 general
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    // Columns: principal directions, largest spread first. Line: column 0 is the line. Flat: columns
+    // 0 and 1 span the plane, column 2 is its unit normal.
+    Eigen::Matrix3d axes = Eigen::Matrix3d::Identity();
+    double line_distance = 0;    // largest distance of a point from the best-fit line
+    double plane_distance = 0;   // ... from the best-fit plane
+
+    // Coordinates of p in the set's own frame reduced to its dimension (unused components zero).
+    Eigen::Vector3d reduce(const Eigen::Vector3d& p) const;
+};
+
+// Smallest thickness, relative to the diagonal, still treated as 3D whatever the caller's tolerance:
+// a margin above double rounding of the fit, so TetGen never sees an exactly coplanar set.
+constexpr double kMinFlatTolerance = 1e-9;
+
+// Fits line and plane (SelfAdjointEigenSolver on the centred covariance, in double) and compares the
+// largest distances with max(flat_tolerance, kMinFlatTolerance) * diagonal. One point, or a zero
+// diagonal, is dimension 0.
+SetShape detect_set_dimension(const std::vector<Eigen::Vector3d>& points, double diagonal, double flat_tolerance);
+
+}  // namespace tetprobe

@@ -1,0 +1,22 @@
+// The cold-start grid: a coarse grid over the probes' bounds whose entries name an inner cell to
+// start a hint-less walk from, so a new or teleported object's first walk is short.
+#pragma once
+
+#include "core/store_data.h"
+
+#include <cstdint>
+
+namespace tetprobe {
+
+constexpr uint32_t kMaxStartGridCells = 32768;
+
+// Grid dimensions over the extents: proportional to them, about (inner_cells / 4)^(1/3) per axis for a
+// cube, each >= 1, product <= kMaxStartGridCells; a flat extent gets 1.
+void start_grid_dimensions(const float lo[3], const float hi[3], uint32_t inner_cells, uint32_t out[3]);
+
+// Fills data.grid and data.grid_cells: each entry is the inner cell containing the grid cell's centre
+// (found by a double-precision walk over the finished inner cells from the previous entry's cell),
+// or, for a centre outside the hull, the last inner cell that walk reached on the hull.
+void build_start_grid(StoreData& data);
+
+}  // namespace tetprobe

@@ -1,0 +1,98 @@
+// tp_build_options_init and tp_store_build: the C ABI of the store builder (bake-time library only).
+#include "bake/store_builder.h"
+#include "capi/boundary.h"
+#include "capi/store_handle.h"
+#include "core/store.h"
+#include "core/store_data.h"
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <utility>
+
+namespace {
+
+constexpr size_t kPositionBytes = 3 * sizeof(float);
+constexpr size_t kShBytes = TP_SH_FLOATS * sizeof(float);
+
+// Whether a caller's struct of struct_size bytes reaches to the end of the field at offset/size.
+bool has_field(uint32_t struct_size, size_t offset, size_t size) { return size_t(struct_size) >= offset + size; }
+
+#define TP_OPTION_FIELD(options, field) \
+    has_field((options)->struct_size, offsetof(tp_build_options, field), sizeof((options)->field))
+
+// Reads the fields the caller's version of tp_build_options has; the rest keep their defaults.
+tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
+    tetprobe::BuildSettings settings;
+    if (!options) return settings;
+    if (!TP_OPTION_FIELD(options, flags)) {
+        throw tetprobe::Error(TP_ERROR_INVALID_ARGUMENT,
+                              "options->struct_size " + std::to_string(options->struct_size) +
+                                  " is too small (call tp_build_options_init)");
+    }
+    settings.flags = options->flags;
+    if (TP_OPTION_FIELD(options, merge_tolerance)) settings.merge_tolerance = options->merge_tolerance;
+    if (TP_OPTION_FIELD(options, flat_tolerance)) settings.flat_tolerance = options->flat_tolerance;
+    if (TP_OPTION_FIELD(options, progress)) settings.progress = options->progress;
+    if (TP_OPTION_FIELD(options, progress_user)) settings.progress_user = options->progress_user;
+    return settings;
+}
+
+// Checks that count records of record_bytes at stride bytes fit in the address space.
+void require_addressable(size_t count, size_t stride, size_t record_bytes, const char* what) {
+    if (count > 0 && (count - 1) > (SIZE_MAX - record_bytes) / stride) {
+        throw tetprobe::Error(TP_ERROR_INVALID_ARGUMENT, std::string(what) + ": count times stride overflows");
+    }
+}
+
+}  // namespace
+
+extern "C" {
+
+TP_API tp_status tp_build_options_init(tp_build_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(options);
+    const tetprobe::BuildSettings defaults;
+    *options = tp_build_options{};
+    options->struct_size = uint32_t(sizeof(tp_build_options));
+    options->flags = defaults.flags;
+    options->merge_tolerance = defaults.merge_tolerance;
+    options->flat_tolerance = defaults.flat_tolerance;
+    options->progress = nullptr;
+    options->progress_user = nullptr;
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_build(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
+                                size_t probe_count, const tp_build_options* options, tp_store** out_store) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(out_store);
+    *out_store = nullptr;
+    if (probe_count == 0) return tetprobe::fail(TP_ERROR_DEGENERATE, "no probes: a store needs at least one probe");
+    TP_REQUIRE_NOT_NULL(positions);
+    if (position_stride == 0) position_stride = kPositionBytes;
+    if (sh_stride == 0) sh_stride = kShBytes;
+    if (position_stride < kPositionBytes) {
+        return tetprobe::fail(TP_ERROR_INVALID_ARGUMENT, "position_stride " + std::to_string(position_stride) +
+                                                             " is below 12 bytes (use 0 for packed)");
+    }
+    if (sh && sh_stride < kShBytes) {
+        return tetprobe::fail(TP_ERROR_INVALID_ARGUMENT,
+                              "sh_stride " + std::to_string(sh_stride) + " is below 108 bytes (use 0 for packed)");
+    }
+    require_addressable(probe_count, position_stride, kPositionBytes, "positions");
+    if (sh) require_addressable(probe_count, sh_stride, kShBytes, "sh");
+    const tetprobe::BuildSettings settings = read_build_options(options);
+
+    const tetprobe::StoreData data =
+        tetprobe::build_store_data(positions, position_stride, sh, sh_stride, probe_count, settings);
+    const std::vector<uint8_t> blob = tetprobe::write_store_blob(data);
+    std::unique_ptr<tetprobe::Store> store = tetprobe::Store::load(blob.data(), blob.size());
+    *out_store = new tp_store{std::move(store)};
+    return TP_OK;
+    TP_API_END
+}
+
+}  // extern "C"
