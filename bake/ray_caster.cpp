@@ -92,6 +92,8 @@ void* RayCaster::new_scene(const std::vector<uint32_t>& meshes) {
     RTCScene scene = rtcNewScene(device);
     check(device, "creating a scene");
     rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    // Watertight traversal: a ray through a shared edge must not leak out of a closed room.
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
     for (uint32_t m : meshes) {
         MeshBuffers& buffers = meshes_[m];
         RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);

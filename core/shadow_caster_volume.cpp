@@ -203,7 +203,12 @@ std::vector<Plane> shadow_caster_volume(const std::vector<Plane>& region, Caster
         Vector3d normal = light == CasterLight::directional ? Vector3d((e.b - e.a).cross(direction))
                                                             : Vector3d((e.b - e.a).cross(light_vector - e.a));
         if (!(normal.norm() > 1e-300)) continue;
-        volume.push_back(oriented_plane(normal, e.a, poly.interior));
+        Plane plane = oriented_plane(normal, e.a, poly.interior);
+        // An edge whose kept face contains the light's direction gives that face again.
+        bool repeated = false;
+        for (const Plane& q : volume)
+            repeated = repeated || (q - plane).cwiseAbs().maxCoeff() <= on_plane_tolerance(std::abs(plane[3]));
+        if (!repeated) volume.push_back(plane);
     }
 
     if (light == CasterLight::point) {

@@ -1,0 +1,322 @@
+// The lighting bake against answers known independently of it: constant and SH skies, the analytic
+// SH of a delta light, the inverse square law, occlusion, the white furnace, realtime lights,
+// culling, and determinism across thread counts.
+#include <catch2/catch.hpp>
+
+#include "bake/lighting_bake.h"
+#include "bake/scene.h"
+#include "core/error.h"
+#include "core/sh.h"
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+using namespace tetprobe;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+Material material(float albedo, float emission = 0.0f, bool two_sided = false) {
+    Material m;
+    m.albedo = {albedo, albedo, albedo};
+    m.emission = {emission, emission, emission};
+    m.two_sided = two_sided;
+    return m;
+}
+
+// An axis-aligned box of 12 triangles whose faces look inward (a closed room).
+void add_room(Scene& scene, const float lo[3], const float hi[3], const Material& m) {
+    std::vector<float> v;
+    for (int corner = 0; corner < 8; ++corner)
+        for (int a = 0; a < 3; ++a) v.push_back(corner & (1 << a) ? hi[a] : lo[a]);
+    // Each face as two triangles wound so that the normal points into the box.
+    const uint32_t faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1}, {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+    std::vector<uint32_t> indices;
+    for (const auto& f : faces) {
+        indices.insert(indices.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+    }
+    scene.add_mesh(v.data(), 8, indices.data(), 12, {m}, nullptr);
+}
+
+// A square in the plane y = height, spanning [-half, half] in x and z, facing up.
+void add_floor(Scene& scene, float height, float half, const Material& m, float x = 0, float z = 0) {
+    const float v[12] = {x - half, height, z - half, x + half, height, z - half,
+                         x + half, height, z + half, x - half, height, z + half};
+    const uint32_t indices[6] = {0, 2, 1, 0, 3, 2};
+    scene.add_mesh(v, 4, indices, 2, {m}, nullptr);
+}
+
+tp_light directional(const float direction[3], float intensity, uint32_t mode = TP_LIGHT_MODE_BAKED) {
+    tp_light light = default_c_light();
+    light.type = TP_LIGHT_DIRECTIONAL;
+    std::memcpy(light.direction, direction, sizeof light.direction);
+    light.intensity = intensity;
+    light.mode = mode;
+    return light;
+}
+
+tp_light point(const float position[3], float intensity) {
+    tp_light light = default_c_light();
+    light.type = TP_LIGHT_POINT;
+    std::memcpy(light.position, position, sizeof light.position);
+    light.intensity = intensity;
+    return light;
+}
+
+// E * Y(w) for radiance arriving from unit direction w with irradiance E facing it.
+std::vector<double> delta_sh(const double w[3], const double rgb[3]) {
+    double basis[9];
+    sh_basis(w[0], w[1], w[2], basis);
+    std::vector<double> sh(27);
+    for (int c = 0; c < 3; ++c)
+        for (int k = 0; k < 9; ++k) sh[9 * c + k] = rgb[c] * basis[k];
+    return sh;
+}
+
+BakeSettings quick(uint32_t rays = 64, uint32_t bounces = 2) {
+    BakeSettings s;
+    s.rays = rays;
+    s.bounces = bounces;
+    s.seed = 7;
+    s.threads = 2;
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("bake: a uniform sky gives exactly the constant-radiance SH", "[bake]") {
+    Scene scene;
+    const float sky[3] = {0.5f, 0.25f, 1.0f};
+    scene.set_sky_color(sky);
+    const std::vector<float> probes = {0, 0, 0, 3, -0.5f, 2, -100, 40, 7};
+    for (uint32_t rays : {16u, 64u, 257u}) {
+        std::vector<float> sh = bake_lighting(scene, probes, quick(rays));
+        for (size_t p = 0; p < 3; ++p)
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 9; ++k) {
+                    double expected = k == 0 ? sky[c] * 2.0 * std::sqrt(kPi) : 0.0;
+                    CHECK(sh[27 * p + 9 * c + k] == Approx(expected).margin(2e-6));
+                }
+    }
+}
+
+TEST_CASE("bake: an SH sky with nothing in the way is reproduced", "[bake]") {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-0.3f, 0.3f);
+    float sky[27];
+    for (int i = 0; i < 27; ++i) sky[i] = i % 9 == 0 ? 2.0f : u(rng);
+    Scene scene;
+    scene.set_sky_sh(sky);
+    std::vector<float> sh = bake_lighting(scene, {1, 2, 3}, quick(128));
+    for (int i = 0; i < 27; ++i) CHECK(sh[i] == Approx(sky[i]).margin(2e-6));
+}
+
+TEST_CASE("bake: one unoccluded directional light is the analytic SH of a delta", "[bake]") {
+    Scene scene;
+    const float d[3] = {0.3f, -0.8f, 0.52f};
+    tp_light light = directional(d, 2.5f);
+    light.color[0] = 1.0f, light.color[1] = 0.5f, light.color[2] = 0.25f;
+    scene.add_light(light);
+    std::vector<float> sh = bake_lighting(scene, {0, 0, 0, 5, 5, 5}, quick());
+    const double length = std::sqrt(0.3 * 0.3 + 0.8 * 0.8 + 0.52 * 0.52);
+    const double w[3] = {-0.3 / length, 0.8 / length, -0.52 / length};
+    const double rgb[3] = {2.5, 1.25, 0.625};
+    std::vector<double> expected = delta_sh(w, rgb);
+    for (int p = 0; p < 2; ++p)
+        for (int i = 0; i < 27; ++i) CHECK(sh[27 * p + i] == Approx(expected[i]).margin(1e-5));
+}
+
+TEST_CASE("bake: a point light follows the inverse square law", "[bake]") {
+    Scene scene;
+    const float at[3] = {0, 10, 0};
+    scene.add_light(point(at, 100.0f));
+    std::vector<float> sh = bake_lighting(scene, {0, 9, 0, 0, 8, 0, 0, 6, 0, 4, 10, 0}, quick());
+    const double up[3] = {0, 1, 0}, side[3] = {-1, 0, 0};
+    const double distances[4] = {1, 2, 4, 4};
+    for (int p = 0; p < 4; ++p) {
+        const double e = 100.0 / (distances[p] * distances[p]);
+        const double rgb[3] = {e, e, e};
+        std::vector<double> expected = delta_sh(p == 3 ? side : up, rgb);
+        for (int i = 0; i < 27; ++i) CHECK(sh[27 * p + i] == Approx(expected[i]).margin(1e-5 * e));
+    }
+}
+
+TEST_CASE("bake: spot cones and ranges cut the light off", "[bake]") {
+    Scene scene;
+    tp_light spot = default_c_light();
+    spot.type = TP_LIGHT_SPOT;
+    spot.position[1] = 10;
+    spot.direction[0] = 0, spot.direction[1] = -1, spot.direction[2] = 0;
+    spot.inner_angle = 20, spot.outer_angle = 40;
+    spot.intensity = 4;
+    spot.range = 12;
+    scene.add_light(spot);
+    // Under the spot (full), 30 degrees off its axis (outside the 20-degree cone), beyond its range.
+    const float off = float(5.0 * std::tan(30.0 * kPi / 180.0));
+    std::vector<float> sh = bake_lighting(scene, {0, 5, 0, off, 5, 0, 0, -5, 0}, quick());
+    CHECK(sh[0] == Approx(4.0 / 25.0 * 0.28209479177387814).epsilon(1e-5));
+    for (int i = 27; i < 81; ++i) CHECK(sh[i] == 0.0f);
+    // 15 degrees off the axis: between the cones, a fraction of full intensity.
+    const float mid = float(5.0 * std::tan(15.0 * kPi / 180.0));
+    sh = bake_lighting(scene, {mid, 5, 0}, quick());
+    const double full = 4.0 / (25.0 + mid * mid) * 0.28209479177387814;
+    CHECK(sh[0] > 0.05 * full);
+    CHECK(sh[0] < 0.95 * full);
+}
+
+TEST_CASE("bake: an occluder removes a light, unless it casts no shadows", "[bake]") {
+    for (int shadows = 0; shadows < 2; ++shadows) {
+        Scene scene;
+        const float at[3] = {0, 10, 0};
+        tp_light light = point(at, 100.0f);
+        light.shadows = shadows;
+        scene.add_light(light);
+        add_floor(scene, 5.0f, 1.0f, material(0.0f));  // black: it only blocks
+        // Below the blocker, and off to the side where nothing is in the way.
+        std::vector<float> sh = bake_lighting(scene, {0, 0, 0, 6, 0, 0}, quick(64, 0));
+        const double e = 1.0;
+        if (shadows) {
+            for (int i = 0; i < 27; ++i) CHECK(sh[i] == 0.0f);
+        } else {
+            CHECK(sh[0] == Approx(e * 0.28209479177387814).epsilon(1e-5));
+        }
+        CHECK(sh[27] == Approx(100.0 / 136.0 * 0.28209479177387814).epsilon(1e-5));
+    }
+}
+
+TEST_CASE("bake: a closed box converges to E / (1 - a) as bounces grow (white furnace)", "[bake]") {
+    const float albedo = 0.6f, emission = 0.5f;
+    Scene scene;
+    const float lo[3] = {-2, -1, -3}, hi[3] = {2, 1.5f, 3};
+    add_room(scene, lo, hi, material(albedo, emission));
+    const std::vector<float> probes = {0, 0, 0, 1.5f, 1, -2.5f};
+    double previous = 0;
+    for (uint32_t bounces = 0; bounces <= 5; ++bounces) {
+        std::vector<float> sh = bake_lighting(scene, probes, quick(64, bounces));
+        // Every path sees emission E at each surface and keeps the fraction a at each reflection.
+        const double radiance = emission * (1.0 - std::pow(albedo, bounces + 1)) / (1.0 - albedo);
+        for (int p = 0; p < 2; ++p)
+            for (int c = 0; c < 3; ++c) {
+                CHECK(sh[27 * p + 9 * c] == Approx(radiance * 2.0 * std::sqrt(kPi)).epsilon(1e-5));
+                for (int k = 1; k < 9; ++k) CHECK(sh[27 * p + 9 * c + k] == Approx(0.0).margin(1e-5));
+            }
+        CHECK(radiance > previous);
+        previous = radiance;
+    }
+    CHECK(previous == Approx(emission / (1.0 - albedo)).epsilon(0.05));
+}
+
+TEST_CASE("bake: a realtime light adds nothing direct but its bounced light", "[bake]") {
+    const float d[3] = {0.2f, -1.0f, 0.1f};
+    auto bake_with = [&](uint32_t mode, uint32_t bounces) {
+        Scene scene;
+        scene.add_light(directional(d, 3.0f, mode));
+        add_floor(scene, -1.0f, 20.0f, material(0.5f));
+        return bake_lighting(scene, {0, 0, 0, 2, 1, -1}, quick(64, bounces));
+    };
+    std::vector<float> realtime0 = bake_with(TP_LIGHT_MODE_REALTIME, 0);
+    for (float c : realtime0) CHECK(c == 0.0f);
+    std::vector<float> realtime = bake_with(TP_LIGHT_MODE_REALTIME, 1);
+    std::vector<float> baked = bake_with(TP_LIGHT_MODE_BAKED, 1);
+    const double length = std::sqrt(0.04 + 1.0 + 0.01);
+    const double w[3] = {-0.2 / length, 1.0 / length, -0.1 / length}, rgb[3] = {3, 3, 3};
+    std::vector<double> delta = delta_sh(w, rgb);
+    CHECK(realtime[0] > 0.1f);  // light from the lit floor
+    for (int p = 0; p < 2; ++p)
+        for (int i = 0; i < 27; ++i) CHECK(baked[27 * p + i] == Approx(realtime[27 * p + i] + delta[i]).margin(1e-5));
+    // The floor's light arrives from below: irradiance facing down exceeds irradiance facing up.
+    float down[3] = {0, -1, 0}, up[3] = {0, 1, 0}, e_down[3], e_up[3];
+    sh_eval_irradiance(realtime.data(), down, e_down);
+    sh_eval_irradiance(realtime.data(), up, e_up);
+    CHECK(e_down[0] > 5 * std::max(e_up[0], 0.0f));
+}
+
+namespace {
+
+// Meshes around and far from the probes, lights with shadows, bounces: culling has work to do.
+Scene culling_scene() {
+    Scene scene;
+    add_floor(scene, -1.0f, 8.0f, material(0.5f));
+    add_floor(scene, 2.0f, 0.5f, material(0.3f, 0.0f, true), 0.3f, 0.2f);   // over the probes
+    add_floor(scene, 1.0f, 0.5f, material(0.3f, 0.0f, true), 30.0f, 0.0f);  // far to the side
+    add_floor(scene, -5.0f, 1.0f, material(0.3f, 0.0f, true), 0.0f, 40.0f); // below, far away
+    const float sun[3] = {0.3f, -1.0f, 0.2f}, lamp[3] = {-1.0f, 4.0f, 1.0f};
+    scene.add_light(directional(sun, 2.0f));
+    scene.add_light(point(lamp, 10.0f));
+    const float sky[3] = {0.1f, 0.2f, 0.3f};
+    scene.set_sky_color(sky);
+    return scene;
+}
+
+const std::vector<float> kCullingProbes = {0, 0, 0, 1, 0.5f, 1, -1, 0.2f, 0.5f, 0.5f, 1.0f, -1, 0, 0, 1};
+
+}  // namespace
+
+TEST_CASE("bake: culling shadow casters changes no byte of the result", "[bake]") {
+    Scene scene = culling_scene();
+    BakeSettings settings = quick(64, 1);
+    EffectsPlan plan;
+    std::vector<float> culled = bake_lighting(scene, kCullingProbes, settings, &plan);
+    CHECK(plan.shadow_casters < plan.shadow_caster_candidates);  // something was culled
+    settings.culling = false;
+    std::vector<float> unculled = bake_lighting(scene, kCullingProbes, settings);
+    REQUIRE(culled.size() == unculled.size());
+    CHECK(std::memcmp(culled.data(), unculled.data(), culled.size() * sizeof(float)) == 0);
+}
+
+TEST_CASE("bake: the same seed gives the same bytes with 1, 2 and 3 threads", "[bake]") {
+    Scene scene = culling_scene();
+    BakeSettings settings = quick(32, 2);
+    std::vector<std::vector<float>> results;
+    for (uint32_t threads : {1u, 2u, 3u}) {
+        settings.threads = threads;
+        results.push_back(bake_lighting(scene, kCullingProbes, settings));
+    }
+    CHECK(std::memcmp(results[0].data(), results[1].data(), results[0].size() * sizeof(float)) == 0);
+    CHECK(std::memcmp(results[0].data(), results[2].data(), results[0].size() * sizeof(float)) == 0);
+    settings.seed = 8;
+    std::vector<float> other = bake_lighting(scene, kCullingProbes, settings);
+    CHECK(std::memcmp(results[0].data(), other.data(), other.size() * sizeof(float)) != 0);
+}
+
+TEST_CASE("bake: the progress callback is called and can cancel", "[bake]") {
+    Scene scene = culling_scene();
+    BakeSettings settings = quick(16, 1);
+    struct Log {
+        int calls = 0;
+        float last = -1;
+        bool ordered = true;
+    } log;
+    settings.progress = [](void* user, float fraction, const char*) {
+        Log* l = static_cast<Log*>(user);
+        l->ordered = l->ordered && fraction >= l->last;
+        l->last = fraction;
+        ++l->calls;
+        return 0;
+    };
+    settings.progress_user = &log;
+    bake_lighting(scene, kCullingProbes, settings);
+    CHECK(log.calls >= 1);
+    CHECK(log.ordered);
+    CHECK(log.last == 1.0f);
+
+    settings.progress = [](void*, float, const char*) { return 1; };
+    try {
+        bake_lighting(scene, kCullingProbes, settings);
+        FAIL("the bake was not cancelled");
+    } catch (const Error& e) {
+        CHECK(e.status() == TP_ERROR_CANCELLED);
+    }
+}
+
+TEST_CASE("bake: an empty scene or no probes bake nothing", "[bake]") {
+    Scene empty;
+    CHECK_THROWS_AS(bake_lighting(empty, {0, 0, 0}, quick()), Error);
+    Scene scene;
+    const float sky[3] = {1, 1, 1};
+    scene.set_sky_color(sky);
+    CHECK_THROWS_AS(bake_lighting(scene, {}, quick()), Error);
+    CHECK_THROWS_AS(bake_lighting(scene, {0, NAN, 0}, quick()), Error);
+}
