@@ -40,8 +40,8 @@ double from_ordered_key(int64_t key) {
 }
 
 double ordered_midpoint(double lo, double hi) {
-    const int64_t a = ordered_key(lo), b = ordered_key(hi);
-    return from_ordered_key(a + (b - a) / 2);
+    // In 128 bits: the keys of -1e100 and +1e100 are further apart than int64 can hold.
+    return from_ordered_key(int64_t((__int128(ordered_key(lo)) + ordered_key(hi)) / 2));
 }
 
 // The single root in [lo, hi] where f(lo) and f(hi) have opposite signs.
@@ -57,7 +57,7 @@ double bracketed_root(const Cubic& f, double lo, double hi, double f_lo) {
         } else {
             hi = x;
         }
-        if (ordered_key(hi) - ordered_key(lo) <= 1) break;
+        if (__int128(ordered_key(hi)) - ordered_key(lo) <= 1) break;
         // A Newton step when it stays strictly inside the bracket; every third step halves it.
         const double slope = f.slope(x);
         double next = slope != 0.0 ? x - fx / slope : lo;
