@@ -1,4 +1,4 @@
-"""numpy arrays as (address, row stride) pairs for the C ABI, copying only when the layout demands it."""
+"""numpy arrays as (array, row stride) pairs for the C ABI, copying only when the layout demands it."""
 
 import numpy as np
 
@@ -28,10 +28,6 @@ def vector(values, width, name, dtype=np.float32):
     if data.shape[0] != width:
         raise ValueError("%s must have %d values (got %d)" % (name, width, data.shape[0]))
     return data
-
-
-def address(array):
-    return array.ctypes.data if array is not None else None
 
 
 class Progress:

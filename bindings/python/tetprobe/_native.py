@@ -1,7 +1,7 @@
 """The C ABI as ctypes: the library search, the version check, the structs and ONE prototype table.
 
-Every function of capi/tetprobe.h is declared in PROTOTYPES below and nowhere else. Buffers that
-numpy owns are passed as c_void_p (addresses), so strided views go through without copies.
+Every function of capi/tetprobe.h is declared in PROTOTYPES below and nowhere else. Buffers are
+numpy arrays passed as they are (see Buffer), so strided views go through without copies.
 """
 
 import ctypes
@@ -76,7 +76,21 @@ class EffectsPlan(Structure):
 
 _status = c_int
 _handle = c_void_p
-_buffer = c_void_p  # a numpy array's address; counts and strides travel separately
+
+
+class Buffer:
+    """A caller-owned buffer argument: a numpy array (or None for NULL); counts and strides travel separately.
+
+    The array itself is the call's argument, so it stays alive until the C function returns."""
+
+    @classmethod
+    def from_param(cls, array):
+        if array is None:
+            return None
+        return c_void_p(array.ctypes.data)
+
+
+_buffer = Buffer
 
 #: (name, restype, argtypes) for every function of capi/tetprobe.h, in the header's order.
 PROTOTYPES = (
@@ -86,7 +100,7 @@ PROTOTYPES = (
     ("tp_build_options_init", _status, (POINTER(BuildOptions),)),
     ("tp_store_build", _status, (_buffer, c_size_t, _buffer, c_size_t, c_size_t, POINTER(BuildOptions),
                                  POINTER(_handle))),
-    ("tp_store_load", _status, (c_void_p, c_size_t, POINTER(_handle))),
+    ("tp_store_load", _status, (_buffer, c_size_t, POINTER(_handle))),
     ("tp_store_load_file", _status, (c_char_p, POINTER(_handle))),
     ("tp_store_save_file", _status, (_handle, c_char_p)),
     ("tp_store_blob", _status, (_handle, POINTER(c_void_p), POINTER(c_size_t))),

@@ -7,7 +7,7 @@ import os
 import numpy as np
 
 from . import _native
-from ._arrays import Progress, address, rows, vector
+from ._arrays import Progress, rows, vector
 from ._native import SH_FLOATS, check, lib
 from .errors import Error, Status
 
@@ -76,7 +76,7 @@ class Scene:
         material.emission[:] = [float(v) for v in vector(emission, 3, "emission")]
         material.two_sided = 1 if two_sided else 0
         mesh = ctypes.c_uint32()
-        check(lib.tp_scene_add_mesh(self._live(), address(points), points.shape[0], address(triangles),
+        check(lib.tp_scene_add_mesh(self._live(), points, points.shape[0], triangles,
                                     triangles.shape[0], ctypes.byref(material), 1, None, ctypes.byref(mesh)))
         return mesh.value
 
@@ -118,9 +118,9 @@ class Scene:
         if (color is None) == (sh is None):
             raise Error(Status.INVALID_ARGUMENT, "set_sky takes exactly one of color and sh")
         if color is not None:
-            check(lib.tp_scene_set_sky_color(self._live(), address(vector(color, 3, "color"))))
+            check(lib.tp_scene_set_sky_color(self._live(), vector(color, 3, "color")))
         else:
-            check(lib.tp_scene_set_sky_sh(self._live(), address(vector(sh, SH_FLOATS, "sh"))))
+            check(lib.tp_scene_set_sky_sh(self._live(), vector(sh, SH_FLOATS, "sh")))
 
     @property
     def probes(self):
@@ -136,7 +136,7 @@ class Scene:
     def probes(self, positions):
         points, _, _ = rows(positions, 3, "positions")
         points = np.ascontiguousarray(points)
-        check(lib.tp_scene_set_probes(self._live(), address(points), points.shape[0]))
+        check(lib.tp_scene_set_probes(self._live(), points, points.shape[0]))
 
 
 def _options(rays, bounces, seed, threads, progress, culling=True):
@@ -166,8 +166,8 @@ def bake(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress
     points, stride = _positions(scene, positions)
     options, callback = _options(rays, bounces, seed, threads, progress, culling)
     out = np.empty((points.shape[0], SH_FLOATS), dtype=np.float32)
-    status = lib.tp_bake(scene._live(), address(points), stride, points.shape[0], ctypes.byref(options),
-                         address(out), SH_FLOATS * 4)
+    status = lib.tp_bake(scene._live(), points, stride, points.shape[0], ctypes.byref(options),
+                         out, SH_FLOATS * 4)
     callback.reraise()
     check(status)
     return out
@@ -180,7 +180,7 @@ def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, pro
     plan = _native.EffectsPlan()
     plan.struct_size = ctypes.sizeof(plan)
     text = ctypes.create_string_buffer(1024)
-    check(lib.tp_bake_plan(scene._live(), address(points), stride, points.shape[0], ctypes.byref(options),
+    check(lib.tp_bake_plan(scene._live(), points, stride, points.shape[0], ctypes.byref(options),
                            ctypes.byref(plan), text, len(text)))
     result = {name: getattr(plan, name) for name, _ in _native.EffectsPlan._fields_ if name != "struct_size"}
     result["sky"] = bool(plan.sky)

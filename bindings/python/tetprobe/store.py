@@ -6,7 +6,7 @@ import os
 import numpy as np
 
 from . import _native
-from ._arrays import Progress, address, rows
+from ._arrays import Progress, rows
 from ._native import SH_FLOATS, check, lib
 from .errors import Error, Status
 
@@ -47,7 +47,7 @@ class Store:
         callback = Progress(progress)
         options.progress = callback.function
         handle = ctypes.c_void_p()
-        status = lib.tp_store_build(address(points), point_stride, address(coefficients), sh_stride,
+        status = lib.tp_store_build(points, point_stride, coefficients, sh_stride,
                                     points.shape[0], ctypes.byref(options), ctypes.byref(handle))
         callback.reraise()
         check(status)
@@ -59,7 +59,7 @@ class Store:
         handle = ctypes.c_void_p()
         if isinstance(source, (bytes, bytearray, memoryview)):
             data = np.frombuffer(source, dtype=np.uint8)
-            check(lib.tp_store_load(address(data) if data.size else None, data.size, ctypes.byref(handle)))
+            check(lib.tp_store_load(data if data.size else np.zeros(1, np.uint8), data.size, ctypes.byref(handle)))
         else:
             check(lib.tp_store_load_file(os.fsencode(source), ctypes.byref(handle)))
         return cls(handle.value)
@@ -125,7 +125,7 @@ class Store:
     def probe_sh(self, probe):
         """The stored (half-precision) SH[27] of input probe `probe` (a merged probe reads its survivor)."""
         out = np.empty(SH_FLOATS, dtype=np.float32)
-        check(lib.tp_store_probe_sh(self._live(), int(probe), address(out)))
+        check(lib.tp_store_probe_sh(self._live(), int(probe), out))
         return out
 
     # ---- queries
@@ -145,8 +145,8 @@ class Store:
         count = data.shape[0]
         cells = self._hints(hints, count)
         out = np.empty((count, SH_FLOATS), dtype=np.float32)
-        check(lib.tp_store_interpolate_batch(self._live(), count, address(data), stride, address(cells), 4,
-                                             address(out), SH_FLOATS * 4))
+        check(lib.tp_store_interpolate_batch(self._live(), count, data, stride, cells, 4,
+                                             out, SH_FLOATS * 4))
         return (out[0], int(cells[0])) if single else (out, cells)
 
     def weights(self, points, hints=None):
@@ -156,8 +156,8 @@ class Store:
         cells = self._hints(hints, count)
         probes = np.empty((count, 4), dtype=np.uint32)
         weights = np.empty((count, 4), dtype=np.float32)
-        check(lib.tp_store_weights_batch(self._live(), count, address(data), stride, address(cells), 4,
-                                         address(probes), 16, address(weights), 16))
+        check(lib.tp_store_weights_batch(self._live(), count, data, stride, cells, 4,
+                                         probes, 16, weights, 16))
         indices = probes.astype(np.int64)
         return (indices[0], weights[0], int(cells[0])) if single else (indices, weights, cells)
 
@@ -167,7 +167,7 @@ class Store:
         location = _native.Location()
         location.struct_size = ctypes.sizeof(location)
         cell = ctypes.c_int32(int(hint))
-        check(lib.tp_store_locate(self._live(), address(data), ctypes.byref(cell), ctypes.byref(location)))
+        check(lib.tp_store_locate(self._live(), data, ctypes.byref(cell), ctypes.byref(location)))
         return {
             "cell": location.cell,
             "kind": "outer" if location.cell_kind == _native.CELL_OUTER else "inner",

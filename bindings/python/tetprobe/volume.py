@@ -5,7 +5,7 @@ import ctypes
 import numpy as np
 
 from . import _native
-from ._arrays import address, rows, vector
+from ._arrays import rows, vector
 from ._native import check, lib
 from .errors import Error, Status
 
@@ -48,7 +48,7 @@ def shadow_caster_volume(planes, light):
     capacity = lib.tp_shadow_caster_volume_bound(data.shape[0])
     out = np.empty((max(capacity, 1), 4), dtype=np.float32)
     count = ctypes.c_size_t()
-    check(lib.tp_shadow_caster_volume(address(data), data.shape[0], light_type, address(light_vector), address(out),
+    check(lib.tp_shadow_caster_volume(data, data.shape[0], light_type, light_vector, out,
                                       capacity, ctypes.byref(count)))
     return out[:count.value].copy()
 
@@ -57,8 +57,8 @@ def volume_test_aabb(planes, box_min, box_max):
     """False only if the box certainly lies outside the volume (conservative)."""
     data = _planes(planes)
     hit = ctypes.c_int()
-    check(lib.tp_volume_test_aabb(address(data), data.shape[0], address(vector(box_min, 3, "box_min")),
-                                  address(vector(box_max, 3, "box_max")), ctypes.byref(hit)))
+    check(lib.tp_volume_test_aabb(data, data.shape[0], vector(box_min, 3, "box_min"),
+                                  vector(box_max, 3, "box_max"), ctypes.byref(hit)))
     return bool(hit.value)
 
 
@@ -66,6 +66,6 @@ def volume_test_sphere(planes, center, radius):
     """False only if the sphere certainly lies outside the volume (conservative)."""
     data = _planes(planes)
     hit = ctypes.c_int()
-    check(lib.tp_volume_test_sphere(address(data), data.shape[0], address(vector(center, 3, "center")),
+    check(lib.tp_volume_test_sphere(data, data.shape[0], vector(center, 3, "center"),
                                     float(radius), ctypes.byref(hit)))
     return bool(hit.value)
