@@ -56,9 +56,9 @@ int command_info(const std::vector<std::string>& args) {
 int command_query(const std::vector<std::string>& args) {
     const Arguments a = parse_arguments(args, {}, {"--weights", "--json"});
     if (a.positional.size() != 4) throw UsageError("query takes STORE x y z");
-    StorePtr store = load_store(a.positional[0]);
     float position[3];
     for (int k = 0; k < 3; ++k) position[k] = float(parse_number(a.positional[1 + k], "a coordinate"));
+    StorePtr store = load_store(a.positional[0]);
     float sh[TP_SH_FLOATS];
     int32_t hint = -1;
     check(tp_store_interpolate(store.get(), position, &hint, sh), "tp_store_interpolate");
