@@ -1,0 +1,108 @@
+// Probe sets of the hard-case families (issue 3) for the builder's tests: each a list of world-space
+// float positions with a name.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+namespace families {
+
+struct ProbeSet {
+    std::string name;
+    std::vector<float> positions;  // 3 per probe, world
+    size_t count() const { return positions.size() / 3; }
+    void add(double x, double y, double z) {
+        positions.push_back(float(x));
+        positions.push_back(float(y));
+        positions.push_back(float(z));
+    }
+};
+
+inline ProbeSet random_cloud(size_t n, uint32_t seed, double scale = 10, double offset = 0) {
+    ProbeSet s{"random", {}};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (size_t i = 0; i < n; ++i) s.add(offset + scale * u(rng), offset + scale * u(rng), offset + scale * u(rng));
+    return s;
+}
+
+inline ProbeSet lattice(int nx, int ny, int nz, double spacing = 1, double jitter = 0, uint32_t seed = 1) {
+    ProbeSet s{"lattice " + std::to_string(nx) + "x" + std::to_string(ny) + "x" + std::to_string(nz), {}};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int z = 0; z < nz; ++z)
+        for (int y = 0; y < ny; ++y)
+            for (int x = 0; x < nx; ++x) {
+                // Jitter of a few float ulps of the coordinate: the "lattice plus 2 eps" family.
+                const double j = jitter * spacing * std::max({nx, ny, nz});
+                s.add(x * spacing + j * u(rng), y * spacing + j * u(rng), z * spacing + j * u(rng));
+            }
+    return s;
+}
+
+// A lattice squashed along z by `squash` (a slab much thinner than wide, still 3D at default tolerance).
+inline ProbeSet slab(int n, double squash) {
+    ProbeSet s{"slab", {}};
+    for (int z = 0; z < 3; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) s.add(x, y, z * squash * n);
+    return s;
+}
+
+inline ProbeSet plane(int n, uint32_t seed) {
+    ProbeSet s{"plane", {}};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 10);
+    for (int i = 0; i < n; ++i) s.add(u(rng), u(rng), 2.0);
+    return s;
+}
+
+// Points of a tilted plane with coordinates rounded to a millimetre (not exactly coplanar in float).
+inline ProbeSet tilted_plane_rounded(int n, uint32_t seed) {
+    ProbeSet s{"tilted plane, rounded", {}};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-10, 10);
+    for (int i = 0; i < n; ++i) {
+        const double a = u(rng), b = u(rng);
+        const double x = 0.8 * a + 0.1 * b, y = 0.36 * a - 0.6 * b, z = 0.48 * a + 0.8 * b + 3;
+        s.add(std::round(x * 1000) / 1000, std::round(y * 1000) / 1000, std::round(z * 1000) / 1000);
+    }
+    return s;
+}
+
+inline ProbeSet line(int n) {
+    ProbeSet s{"line", {}};
+    for (int i = 0; i < n; ++i) s.add(1 + 0.5 * i, 2 - 0.25 * i, 3 + 0.75 * i);
+    return s;
+}
+
+// A race track: a flat stadium-shaped loop of probes along both edges of the road (straights with
+// many collinear probes, then half circles), in a slightly tilted plane.
+inline ProbeSet racetrack(int per_edge) {
+    ProbeSet s{"racetrack", {}};
+    const double kPi = 3.14159265358979323846, straight = 60;
+    for (double radius : {15.0, 27.0}) {
+        const double perimeter = 2 * straight + 2 * kPi * radius;
+        for (int i = 0; i < per_edge; ++i) {
+            double d = perimeter * i / per_edge, x, y;
+            if (d < straight) {
+                x = -straight / 2 + d, y = -radius;
+            } else if ((d -= straight) < kPi * radius) {
+                x = straight / 2 + radius * std::sin(d / radius), y = -radius * std::cos(d / radius);
+            } else if ((d -= kPi * radius) < straight) {
+                x = straight / 2 - d, y = radius;
+            } else {
+                d -= straight;
+                x = -straight / 2 - radius * std::sin(d / radius), y = radius * std::cos(d / radius);
+            }
+            s.add(100 + x, 5 + 0.05 * x, -50 + y);
+        }
+    }
+    return s;
+}
+
+}  // namespace families

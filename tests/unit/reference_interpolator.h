@@ -1,0 +1,246 @@
+// A slow, independent reference for the builder's output: given a StoreData and a local point, it
+// finds the probes and weights by brute force over every cell, in double, from the probe positions
+// and normals alone (never the stored matrices). Inner cells: barycentric coordinates from signed
+// volumes (3D), signed areas about the set's mean plane normal (2D), projection on the line (1D).
+// Outer cells: the moved hull simplex P_k + t N_k is found by sampling its plane (line) equation
+// f(t) in t and bisecting every sign change, then the root that puts p inside it is kept.
+#pragma once
+
+#include "core/store_data.h"
+#include "core/store_format.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <vector>
+
+namespace reference {
+
+using tetprobe::StoreData;
+using Vec = Eigen::Vector3d;
+
+inline Vec position(const StoreData& d, uint32_t probe) {
+    return Vec(d.positions[3 * size_t(probe)], d.positions[3 * size_t(probe) + 1], d.positions[3 * size_t(probe) + 2]);
+}
+inline Vec normal(const StoreData& d, uint32_t probe) {
+    return Vec(d.normals[3 * size_t(probe)], d.normals[3 * size_t(probe) + 1], d.normals[3 * size_t(probe) + 2]);
+}
+inline uint32_t vertex(const StoreData& d, uint32_t cell, uint32_t slot) { return d.cell_vertices[4 * size_t(cell) + slot]; }
+
+struct Answer {
+    bool outside = false;       // beyond the hull of a store without outer cells
+    bool outer = false;         // decided by an outer cell
+    uint32_t cell = 0;
+    double score = -1e300;      // smallest barycentric coordinate in the chosen cell
+    double t = 0;
+    std::map<uint32_t, double> weights;  // stored probe -> weight (zero weights dropped)
+
+    double blend(const std::vector<double>& values) const {
+        double sum = 0;
+        for (const auto& w : weights) sum += w.second * values[w.first];
+        return sum;
+    }
+    Vec blend_positions(const StoreData& d) const {
+        Vec sum = Vec::Zero();
+        for (const auto& w : weights) sum += w.second * position(d, w.first);
+        return sum;
+    }
+};
+
+// The flat set's plane normal: the mean of the inner triangles' unit normals, signs aligned with the first.
+inline Vec plane_normal(const StoreData& d) {
+    Vec sum = Vec::Zero(), first = Vec::Zero();
+    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+        Vec n = (position(d, vertex(d, c, 1)) - position(d, vertex(d, c, 0)))
+                    .cross(position(d, vertex(d, c, 2)) - position(d, vertex(d, c, 0)));
+        if (!(n.norm() > 0)) continue;
+        n.normalize();
+        if (first.isZero()) first = n;
+        sum += n.dot(first) < 0 ? Vec(-n) : n;
+    }
+    return sum.normalized();
+}
+
+// The line's direction: from one end of the chain of segments to the other.
+inline Vec line_direction(const StoreData& d) {
+    std::map<uint32_t, int> uses;
+    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+        ++uses[vertex(d, c, 0)];
+        ++uses[vertex(d, c, 1)];
+    }
+    std::vector<uint32_t> ends;
+    for (const auto& u : uses)
+        if (u.second == 1) ends.push_back(u.first);
+    if (ends.size() != 2) return Vec::UnitX();
+    return (position(d, ends[1]) - position(d, ends[0])).normalized();
+}
+
+struct Frame {
+    Vec n = Vec::UnitZ();  // 2D
+    Vec u = Vec::UnitX();  // 1D
+};
+
+inline Frame frame_of(const StoreData& d) {
+    Frame f;
+    if (d.dimension == 2) f.n = plane_normal(d);
+    if (d.dimension == 1) f.u = line_direction(d);
+    return f;
+}
+
+// Barycentric coordinates of p in inner cell c (slots 0..d).
+inline void inner_barycentrics(const StoreData& d, const Frame& f, uint32_t c, const Vec& p, double w[4]) {
+    const uint32_t dim = d.dimension;
+    Vec v[4];
+    for (uint32_t k = 0; k <= dim; ++k) v[k] = position(d, vertex(d, c, k));
+    if (dim == 0) {
+        w[0] = 1;
+    } else if (dim == 1) {
+        w[0] = (p - v[1]).dot(f.u) / (v[0] - v[1]).dot(f.u);
+        w[1] = 1 - w[0];
+    } else if (dim == 2) {
+        const double area = (v[1] - v[0]).cross(v[2] - v[0]).dot(f.n);
+        w[0] = (v[1] - p).cross(v[2] - p).dot(f.n) / area;
+        w[1] = (v[2] - p).cross(v[0] - p).dot(f.n) / area;
+        w[2] = (v[0] - p).cross(v[1] - p).dot(f.n) / area;
+    } else {
+        const double volume = (v[1] - v[0]).cross(v[2] - v[0]).dot(v[3] - v[0]);
+        w[0] = (v[1] - p).cross(v[2] - p).dot(v[3] - p) / volume;
+        w[1] = -(v[0] - p).cross(v[2] - p).dot(v[3] - p) / volume;
+        w[2] = (v[0] - p).cross(v[1] - p).dot(v[3] - p) / volume;
+        w[3] = -(v[0] - p).cross(v[1] - p).dot(v[2] - p) / volume;
+    }
+}
+
+// f(t) of outer cell c: p lies in the plane (3D) or on the line across the plane (2D) of the moved
+// facet; positive at t = 0 exactly when p is beyond the facet.
+inline double moved_facet_equation(const Vec* P, const Vec* N, uint32_t dim, const Frame& f, const Vec& p, double t) {
+    if (dim == 3) {
+        const Vec a = P[0] + t * N[0], b = P[1] + t * N[1], c = P[2] + t * N[2];
+        return (b - a).cross(c - a).dot(p - a);
+    }
+    const Vec a = P[0] + t * N[0], b = P[1] + t * N[1];
+    return (b - a).cross(p - a).dot(f.n);
+}
+
+// Weights of p in the moved facet at t (triangle projected on its plane, segment on its line).
+inline void moved_facet_weights(const Vec* P, const Vec* N, uint32_t dim, const Vec& p, double t, double w[3]) {
+    if (dim == 3) {
+        const Vec a = P[0] + t * N[0], b = P[1] + t * N[1], c = P[2] + t * N[2];
+        const Vec n = (b - a).cross(c - a);
+        const double n2 = n.squaredNorm();
+        w[0] = (b - p).cross(c - p).dot(n) / n2;
+        w[1] = (c - p).cross(a - p).dot(n) / n2;
+        w[2] = 1 - w[0] - w[1];
+    } else {
+        const Vec a = P[0] + t * N[0], b = P[1] + t * N[1];
+        w[1] = (p - a).dot(b - a) / (b - a).squaredNorm();
+        w[0] = 1 - w[1];
+    }
+}
+
+// Roots of f in [0, t_max] by dense sampling (denser near 0) and bisection of each sign change.
+template <class F>
+std::vector<double> sampled_roots(const F& f, double t_max, int samples = 400) {
+    std::vector<double> roots;
+    double t0 = 0, f0 = f(0.0);
+    if (f0 == 0) roots.push_back(0);
+    for (int i = 1; i <= samples; ++i) {
+        const double s = double(i) / samples;
+        const double t1 = t_max * s * s * s;
+        const double f1 = f(t1);
+        if (f1 == 0) {
+            roots.push_back(t1);
+        } else if ((f0 < 0 && f1 > 0) || (f0 > 0 && f1 < 0)) {
+            double lo = t0, hi = t1, flo = f0;
+            for (int k = 0; k < 200 && hi - lo > 1e-15 * std::max(1.0, hi); ++k) {
+                const double mid = 0.5 * (lo + hi), fm = f(mid);
+                if ((fm < 0) == (flo < 0)) {
+                    lo = mid;
+                    flo = fm;
+                } else {
+                    hi = mid;
+                }
+            }
+            roots.push_back(0.5 * (lo + hi));
+        }
+        t0 = t1;
+        f0 = f1;
+    }
+    return roots;
+}
+
+inline double set_diagonal(const StoreData& d) {
+    double s = 0;
+    for (int a = 0; a < 3; ++a) s += double(d.bounds_max[a] - d.bounds_min[a]) * double(d.bounds_max[a] - d.bounds_min[a]);
+    return std::sqrt(s);
+}
+
+// Probes and weights of local point p by brute force over every cell.
+inline Answer locate(const StoreData& d, const Vec& p, double inside_tolerance = 1e-9) {
+    const Frame f = frame_of(d);
+    const uint32_t dim = d.dimension;
+    Answer best;
+    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+        double w[4] = {0, 0, 0, 0};
+        inner_barycentrics(d, f, c, p, w);
+        double score = w[0];
+        bool finite = true;
+        for (uint32_t k = 0; k <= dim; ++k) {
+            score = std::min(score, w[k]);
+            finite = finite && std::isfinite(w[k]);
+        }
+        if (!finite || score <= best.score) continue;
+        best.score = score;
+        best.cell = c;
+        best.weights.clear();
+        for (uint32_t k = 0; k <= dim; ++k)
+            if (w[k] != 0) best.weights[vertex(d, c, k)] += w[k];
+    }
+    if (best.score >= -inside_tolerance || dim == 0) return best;
+    if (d.cell_count() == d.inner_cell_count) {
+        best.outside = true;
+        return best;
+    }
+
+    Answer outer;
+    outer.outer = true;
+    const double reach = 4 * ((p - position(d, 0)).norm() + set_diagonal(d)) + 1;
+    for (uint32_t c = d.inner_cell_count; c < d.cell_count(); ++c) {
+        Vec P[3], N[3];
+        for (uint32_t k = 0; k < dim; ++k) {
+            P[k] = position(d, vertex(d, c, k));
+            N[k] = normal(d, vertex(d, c, k));
+        }
+        if (dim == 1) {
+            const double beyond = (p - P[0]).dot(N[0]);
+            if (beyond > 0 && outer.score < 1) {
+                outer.score = 1;
+                outer.cell = c;
+                outer.t = beyond;
+                outer.weights = {{vertex(d, c, 0), 1.0}};
+            }
+            continue;
+        }
+        if (!(moved_facet_equation(P, N, dim, f, p, 0) > 0)) continue;
+        const auto roots = sampled_roots([&](double t) { return moved_facet_equation(P, N, dim, f, p, t); }, reach);
+        for (double t : roots) {
+            double w[3];
+            moved_facet_weights(P, N, dim, p, t, w);
+            double score = w[0];
+            for (uint32_t k = 1; k < dim; ++k) score = std::min(score, w[k]);
+            if (!std::isfinite(score) || score <= outer.score) continue;
+            outer.score = score;
+            outer.cell = c;
+            outer.t = t;
+            outer.weights.clear();
+            for (uint32_t k = 0; k < dim; ++k)
+                if (w[k] != 0) outer.weights[vertex(d, c, k)] += w[k];
+        }
+    }
+    return outer.score > best.score ? outer : best;
+}
+
+}  // namespace reference

@@ -1,0 +1,356 @@
+// The store builder (bake/store_builder.h): structure of the StoreData it produces for every kind of
+// probe set, merging, dimension handling, bad input, progress and cancellation, and tp_store_build.
+#include "probe_families.h"
+#include "reference_interpolator.h"
+#include "store_structure.h"
+
+#include "bake/store_builder.h"
+#include "capi/tetprobe.h"
+#include "core/error.h"
+#include "core/store.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+using tetprobe::BuildSettings;
+using tetprobe::StoreData;
+
+namespace {
+
+StoreData build(const std::vector<float>& positions, uint32_t flags = 0, const std::vector<float>* sh = nullptr) {
+    BuildSettings settings;
+    settings.flags = flags;
+    return tetprobe::build_store_data(positions.data(), 12, sh ? sh->data() : nullptr, 108, positions.size() / 3,
+                                      settings);
+}
+
+// Status and message of a build that must fail.
+std::pair<tp_status, std::string> build_error(const std::vector<float>& positions, const BuildSettings& settings = {},
+                                              const std::vector<float>* sh = nullptr) {
+    try {
+        tetprobe::build_store_data(positions.data(), 12, sh ? sh->data() : nullptr, 108, positions.size() / 3, settings);
+    } catch (const tetprobe::Error& e) {
+        return {e.status(), e.what()};
+    }
+    return {TP_OK, ""};
+}
+
+}  // namespace
+
+TEST_CASE("builder: structure follows store_format.h for every kind of set", "[builder]") {
+    std::vector<families::ProbeSet> sets = {
+        families::random_cloud(150, 1),     families::lattice(2, 2, 2),      families::lattice(4, 3, 5),
+        families::lattice(5, 5, 5, 1, 2.4e-7), families::slab(6, 1e-3),     families::plane(60, 2),
+        families::tilted_plane_rounded(80, 3), families::line(7),           families::racetrack(40),
+    };
+    for (const auto& set : sets) {
+        for (uint32_t flags : {0u, uint32_t(TP_BUILD_NO_EXTRAPOLATION)}) {
+            INFO(set.name << " flags " << flags);
+            const StoreData d = build(set.positions, flags);
+            structure::check_all(d);
+        }
+    }
+}
+
+TEST_CASE("builder: set dimension follows the shape", "[builder]") {
+    CHECK(build(families::random_cloud(40, 2).positions).dimension == 3);
+    CHECK(build(families::lattice(3, 3, 3).positions).dimension == 3);
+    CHECK(build(families::slab(5, 1e-3).positions).dimension == 3);
+    CHECK(build(families::slab(5, 1e-6).positions).dimension == 2);  // thinner than the flat tolerance
+    CHECK(build(families::plane(30, 4).positions).dimension == 2);
+    CHECK(build(families::tilted_plane_rounded(30, 5).positions).dimension == 2);
+    CHECK(build(families::racetrack(20).positions).dimension == 2);
+    CHECK(build(families::line(5).positions).dimension == 1);
+    CHECK(build({1, 2, 3}).dimension == 0);
+    CHECK(build({1, 2, 3, 1, 2, 3, 1, 2, 3}).dimension == 0);  // identical probes merge into one
+}
+
+TEST_CASE("builder: one probe is one inner cell and no outer cell", "[builder]") {
+    const StoreData d = build({5, -2, 7});
+    structure::check_all(d);
+    REQUIRE(d.dimension == 0);
+    REQUIRE(d.cell_count() == 1);
+    REQUIRE(d.inner_cell_count == 1);
+    REQUIRE(d.cell_vertices == std::vector<uint32_t>{0, tetprobe::kNone32, tetprobe::kNone32, tetprobe::kNone32});
+    REQUIRE(d.origin[0] == 5);
+    REQUIRE(d.origin[1] == -2);
+    REQUIRE(d.origin[2] == 7);
+    REQUIRE(d.positions == std::vector<float>{0, 0, 0});
+}
+
+TEST_CASE("builder: two probes and collinear probes make segments with two end cells", "[builder]") {
+    SECTION("two probes") {
+        const StoreData d = build({0, 0, 0, 2, 4, 4});
+        structure::check_all(d);
+        REQUIRE(d.dimension == 1);
+        REQUIRE(d.inner_cell_count == 1);
+        REQUIRE(d.cell_count() == 3);
+        // The ends' rays point away from each other along the segment.
+        const reference::Vec n0 = reference::normal(d, 0), n1 = reference::normal(d, 1);
+        REQUIRE(n0.dot(reference::Vec(2, 4, 4).normalized()) == Approx(-1));
+        REQUIRE(n1.dot(reference::Vec(2, 4, 4).normalized()) == Approx(1));
+    }
+    SECTION("collinear, unsorted input") {
+        const std::vector<float> p = {3, 3, 3, 0, 0, 0, 1, 1, 1, 4, 4, 4, 2, 2, 2};
+        const StoreData d = build(p);
+        structure::check_all(d);
+        REQUIRE(d.dimension == 1);
+        REQUIRE(d.inner_cell_count == 4);
+        REQUIRE(d.cell_count() == 6);
+        // Segments join neighbours along the line: every segment is one unit of (1,1,1) long.
+        for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+            const reference::Vec a = reference::position(d, d.cell_vertices[4 * c]);
+            const reference::Vec b = reference::position(d, d.cell_vertices[4 * c + 1]);
+            REQUIRE((a - b).norm() == Approx(std::sqrt(3.0)));
+        }
+    }
+}
+
+TEST_CASE("builder: flat sets are triangulated in their plane", "[builder]") {
+    SECTION("three probes") {
+        const StoreData d = build({0, 0, 0, 1, 0, 0, 0, 1, 0});
+        structure::check_all(d);
+        REQUIRE(d.dimension == 2);
+        REQUIRE(d.inner_cell_count == 1);
+        REQUIRE(d.cell_count() == 4);
+    }
+    SECTION("a square lattice gives two triangles per square and no cell off the plane") {
+        const StoreData d = build(families::lattice(6, 5, 1).positions);
+        structure::check_all(d);
+        REQUIRE(d.dimension == 2);
+        REQUIRE(d.inner_cell_count == 2 * 5 * 4);
+        REQUIRE(d.cell_count() - d.inner_cell_count == 2 * (5 + 4));  // boundary edges
+    }
+}
+
+TEST_CASE("builder: duplicates and near-duplicates merge into the first, with the mean SH", "[builder]") {
+    families::ProbeSet set = families::random_cloud(30, 9);
+    const size_t base = set.count();
+    std::vector<float> sh(27 * base);
+    for (size_t i = 0; i < sh.size(); ++i) sh[i] = float(i % 97) * 0.01f;
+    // Probe base + i copies probe 3 * i exactly, or 1e-8 of the diagonal away.
+    for (size_t i = 0; i < 5; ++i) {
+        const float* p = &set.positions[3 * (3 * i)];
+        set.add(p[0] + (i % 2 ? 1e-7f * 40 : 0.f), p[1], p[2]);
+        for (int c = 0; c < 27; ++c) sh.push_back(float(c));
+    }
+    const StoreData d = build(set.positions, 0, &sh);
+    structure::check_all(d);
+    REQUIRE(d.input_probe_count == base + 5);
+    REQUIRE(d.probe_count() == base);
+    for (size_t i = 0; i < 5; ++i) {
+        const uint32_t survivor = d.input_remap[3 * i];
+        REQUIRE(d.input_remap[base + i] == survivor);
+        REQUIRE(d.probe_source[survivor] == 3 * i);
+        for (int c = 0; c < 27; ++c) REQUIRE(d.sh[27 * survivor + c] == Approx((sh[27 * 3 * i + c] + float(c)) / 2));
+    }
+    // Probes that were not merged keep their SH and position.
+    const uint32_t kept = d.input_remap[1];
+    REQUIRE(d.probe_source[kept] == 1);
+    for (int c = 0; c < 27; ++c) REQUIRE(d.sh[27 * kept + c] == sh[27 + c]);
+    for (int a = 0; a < 3; ++a) REQUIRE(d.positions[3 * kept + a] + d.origin[a] == Approx(set.positions[3 + a]));
+}
+
+TEST_CASE("builder: probes closer than the merge tolerance merge, farther ones do not", "[builder]") {
+    std::vector<float> p = families::lattice(3, 3, 3).positions;  // diagonal 2 sqrt(3)
+    p.insert(p.end(), {1.0f + 1e-3f, 1, 1});                        // 2.9e-4 of the diagonal from (1,1,1)
+    BuildSettings settings;
+    settings.merge_tolerance = 1e-3;
+    StoreData merged = tetprobe::build_store_data(p.data(), 12, nullptr, 108, p.size() / 3, settings);
+    REQUIRE(merged.probe_count() == 27);
+    REQUIRE(merged.input_remap[27] == merged.input_remap[13]);
+    settings.merge_tolerance = 1e-4;
+    StoreData kept = tetprobe::build_store_data(p.data(), 12, nullptr, 108, p.size() / 3, settings);
+    REQUIRE(kept.probe_count() == 28);
+    structure::check_all(kept);
+}
+
+TEST_CASE("builder: a flat set merges probes that differ only across its plane", "[builder]") {
+    std::vector<float> p = families::lattice(4, 4, 1).positions;
+    p.insert(p.end(), {1, 1, 1e-5f});  // above lattice probe (1,1,0): the same point of the plane
+    const StoreData d = build(p);
+    REQUIRE(d.dimension == 2);
+    REQUIRE(d.probe_count() == 16);
+    REQUIRE(d.input_remap[16] == d.input_remap[5]);
+    structure::check_all(d);
+}
+
+TEST_CASE("builder: no extrapolation leaves hull facets without neighbours", "[builder]") {
+    const StoreData d = build(families::random_cloud(50, 4).positions, TP_BUILD_NO_EXTRAPOLATION);
+    REQUIRE(d.cell_count() == d.inner_cell_count);
+    REQUIRE((d.flags & tetprobe::kFlagNoExtrapolation) != 0);
+    size_t open = 0;
+    for (uint32_t n : d.cell_neighbours) open += n == tetprobe::kNone32;
+    REQUIRE(open > 0);
+    structure::check_all(d);
+}
+
+TEST_CASE("builder: cell 0 is the inner cell nearest the probes' mean and the grid covers the set", "[builder]") {
+    const StoreData d = build(families::random_cloud(300, 5, 4.0, 20.0).positions);
+    reference::Vec mean = reference::Vec::Zero();
+    for (uint32_t j = 0; j < d.probe_count(); ++j) mean += reference::position(d, j) / d.probe_count();
+    auto centroid = [&](uint32_t c) {
+        reference::Vec s = reference::Vec::Zero();
+        for (uint32_t k = 0; k < 4; ++k) s += reference::position(d, d.cell_vertices[4 * c + k]) / 4;
+        return s;
+    };
+    const double best = (centroid(0) - mean).norm();
+    for (uint32_t c = 1; c < d.inner_cell_count; ++c) REQUIRE((centroid(c) - mean).norm() >= best - 1e-6);
+    REQUIRE(d.grid[0] * d.grid[1] * d.grid[2] > 1);
+    // Grid cells whose centre lies inside the hull name a cell that contains it.
+    const reference::Frame frame = reference::frame_of(d);
+    size_t inside = 0;
+    for (uint32_t z = 0; z < d.grid[2]; ++z)
+        for (uint32_t y = 0; y < d.grid[1]; ++y)
+            for (uint32_t x = 0; x < d.grid[0]; ++x) {
+                const uint32_t g[3] = {x, y, z};
+                reference::Vec p;
+                for (int a = 0; a < 3; ++a)
+                    p[a] = d.bounds_min[a] + (g[a] + 0.5) * (d.bounds_max[a] - d.bounds_min[a]) / d.grid[a];
+                const reference::Answer truth = reference::locate(d, p);
+                if (truth.outer || truth.score < 1e-6) continue;
+                ++inside;
+                double w[4];
+                reference::inner_barycentrics(d, frame, d.grid_cells[(z * d.grid[1] + y) * d.grid[0] + x], p, w);
+                REQUIRE(std::min(std::min(w[0], w[1]), std::min(w[2], w[3])) >= -1e-9);
+            }
+    REQUIRE(inside > 0);
+}
+
+TEST_CASE("builder: origin is the centroid and positions are local", "[builder]") {
+    const families::ProbeSet set = families::random_cloud(20, 6, 1.0, 1000.0);
+    const StoreData d = build(set.positions);
+    double centroid[3] = {0, 0, 0};
+    for (size_t i = 0; i < set.count(); ++i)
+        for (int a = 0; a < 3; ++a) centroid[a] += double(set.positions[3 * i + a]) / double(set.count());
+    for (int a = 0; a < 3; ++a) REQUIRE(d.origin[a] == Approx(centroid[a]).epsilon(1e-12));
+    for (uint32_t j = 0; j < d.probe_count(); ++j)
+        for (int a = 0; a < 3; ++a)
+            REQUIRE(double(d.positions[3 * j + a]) + d.origin[a] ==
+                    Approx(double(set.positions[3 * d.probe_source[j] + a])).margin(1e-4));
+}
+
+TEST_CASE("builder: bad input is refused with a status naming the probe", "[builder]") {
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    std::vector<float> p = families::random_cloud(10, 7).positions;
+
+    auto with = [&](size_t index, float value) {
+        std::vector<float> q = p;
+        q[index] = value;
+        return build_error(q);
+    };
+    auto e = with(3 * 4 + 1, nan);
+    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.second.find("probe 4") != std::string::npos);
+    REQUIRE(e.second.find(" y ") != std::string::npos);
+    e = with(3 * 9 + 2, -inf);
+    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.second.find("probe 9") != std::string::npos);
+    REQUIRE(e.second.find(" z ") != std::string::npos);
+    e = with(0, 3e31f);
+    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.second.find("probe 0") != std::string::npos);
+
+    std::vector<float> sh(27 * 10, 0.5f);
+    sh[27 * 6 + 13] = nan;
+    e = build_error(p, {}, &sh);
+    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.second.find("probe 6") != std::string::npos);
+
+    REQUIRE(build_error({}).first == TP_ERROR_DEGENERATE);
+
+    BuildSettings bad;
+    bad.merge_tolerance = -1;
+    REQUIRE(build_error(p, bad).first == TP_ERROR_INVALID_ARGUMENT);
+    bad = BuildSettings();
+    bad.flat_tolerance = std::nan("");
+    REQUIRE(build_error(p, bad).first == TP_ERROR_INVALID_ARGUMENT);
+    bad = BuildSettings();
+    bad.flags = 0x80;
+    REQUIRE(build_error(p, bad).first == TP_ERROR_INVALID_ARGUMENT);
+}
+
+namespace {
+
+struct ProgressLog {
+    std::vector<float> fractions;
+    std::vector<std::string> stages;
+    int cancel_at = -1;
+};
+
+int log_progress(void* user, float fraction, const char* stage) {
+    auto* log = static_cast<ProgressLog*>(user);
+    log->fractions.push_back(fraction);
+    log->stages.push_back(stage);
+    return int(log->fractions.size()) - 1 == log->cancel_at ? 1 : 0;
+}
+
+}  // namespace
+
+TEST_CASE("builder: progress reaches 1 in order, and a non-zero return cancels", "[builder]") {
+    const std::vector<float> p = families::random_cloud(40, 8).positions;
+    ProgressLog log;
+    BuildSettings settings;
+    settings.progress = &log_progress;
+    settings.progress_user = &log;
+    tetprobe::build_store_data(p.data(), 12, nullptr, 108, p.size() / 3, settings);
+    REQUIRE(log.fractions.size() >= 5);
+    REQUIRE(log.fractions.front() == 0.0f);
+    REQUIRE(log.fractions.back() == 1.0f);
+    for (size_t i = 1; i < log.fractions.size(); ++i) REQUIRE(log.fractions[i] >= log.fractions[i - 1]);
+
+    for (int at : {0, 2, int(log.fractions.size()) - 1}) {
+        ProgressLog cancel;
+        cancel.cancel_at = at;
+        settings.progress_user = &cancel;
+        auto e = build_error(p, settings);
+        REQUIRE(e.first == TP_ERROR_CANCELLED);
+        REQUIRE(e.second == "build cancelled");
+        REQUIRE(cancel.fractions.size() == size_t(at) + 1);
+    }
+}
+
+TEST_CASE("builder: strided positions and SH read the same as packed ones", "[builder]") {
+    const families::ProbeSet set = families::random_cloud(25, 10);
+    std::vector<float> sh(27 * set.count());
+    for (size_t i = 0; i < sh.size(); ++i) sh[i] = float(i) * 0.001f;
+    const size_t ps = 5, ss = 31;  // floats per record
+    std::vector<float> strided_p(ps * set.count(), -1.f), strided_sh(ss * set.count(), -1.f);
+    for (size_t i = 0; i < set.count(); ++i) {
+        std::memcpy(&strided_p[ps * i], &set.positions[3 * i], 12);
+        std::memcpy(&strided_sh[ss * i], &sh[27 * i], 108);
+    }
+    BuildSettings settings;
+    const StoreData a = tetprobe::build_store_data(set.positions.data(), 12, sh.data(), 108, set.count(), settings);
+    const StoreData b =
+        tetprobe::build_store_data(strided_p.data(), ps * 4, strided_sh.data(), ss * 4, set.count(), settings);
+    REQUIRE(a.positions == b.positions);
+    REQUIRE(a.sh == b.sh);
+    REQUIRE(a.cell_vertices == b.cell_vertices);
+    REQUIRE(a.inner_matrices == b.inner_matrices);
+}
+
+TEST_CASE("builder: the data writes a blob that loads and answers at the probes", "[builder]") {
+    // (tp_store_build itself is this path behind the C boundary; the C harness covers its arguments.)
+    const families::ProbeSet set = families::random_cloud(30, 11);
+    for (uint32_t flags : {0u, uint32_t(TP_BUILD_INDEX32), uint32_t(TP_BUILD_NO_EXTRAPOLATION)}) {
+        const StoreData d = build(set.positions, flags);
+        const std::vector<uint8_t> blob = tetprobe::write_store_blob(d);
+        const auto store = tetprobe::Store::load(blob.data(), blob.size());
+        REQUIRE(store->header().probe_count == 30);
+        REQUIRE(store->header().dimension == 3);
+        REQUIRE(((store->header().flags & tetprobe::kFlagIndex32) != 0) == ((flags & TP_BUILD_INDEX32) != 0));
+        for (uint32_t i = 0; i < 30; ++i) {
+            const tetprobe::Location loc = store->locate(&set.positions[3 * i], -1);
+            REQUIRE(loc.status == TP_OK);
+            for (int k = 0; k < 4; ++k) {
+                if (loc.probes[k] == d.input_remap[i]) REQUIRE(loc.weights[k] == Approx(1).margin(1e-5));
+            }
+        }
+    }
+}
