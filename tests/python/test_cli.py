@@ -95,3 +95,25 @@ def test_demo_writes_its_pictures_and_stores(tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     assert Store.load(str(out / "analytic.tpb")).info()["probes"] > 100
     assert not [p for p in out.iterdir() if ".tmp" in p.name]
+
+
+SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "samples", "scenes")
+
+
+def test_bake_a_sample_scene_into_a_store(tmp_path):
+    scene = os.path.join(SCENES, "cornell_box.json")
+    if not os.path.exists(scene):
+        pytest.skip("samples/scenes/cornell_box.json not present")
+    store_path = tmp_path / "cornell.tpb"
+    result = run("bake", scene, "-o", store_path, "--rays", "16", "--bounces", "1", "--seed", "3", "--threads", "1")
+    assert "effects plan:" in result.stdout and "emissive" in result.stdout
+    assert "baked" in result.stdout and "wrote" in result.stdout
+    assert "100%" in result.stderr  # the progress bar
+    store = Store.load(str(store_path))
+    assert store.info()["input_probes"] > 0
+    again = tmp_path / "again.tpb"
+    run("bake", scene, "-o", again, "--rays", "16", "--bounces", "1", "--seed", "3", "--threads", "2")
+    assert again.read_bytes() == store_path.read_bytes()  # same seed, any thread count
+    result = run("bake", tmp_path / "missing.json", "-o", tmp_path / "x.tpb", ok=False)
+    assert result.returncode == 1 and "x.tpb" not in os.listdir(tmp_path)
+    assert run("bake", scene, "-o", tmp_path / "x.tpb", "--rays", "zero", ok=False).returncode == 2
