@@ -19,8 +19,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // ---- (a) the analytic field: an ambient term and a sun, both linear in position (a tetrahedral
-// interpolation reproduces them up to half precision), plus a lamp whose direction and 1/(1+d^2)
-// falloff vary smoothly but not linearly.
+// interpolation reproduces them up to half precision), plus a lamp whose direction and 1/(r^2+d^2)
+// falloff (r = 1.5, about the probe spacing) vary smoothly but not linearly.
 
 constexpr float kLamp[3] = {7.0f, 2.5f, 3.0f};
 
@@ -38,7 +38,7 @@ void field(const float p[3], bool with_lamp, float out[TP_SH_FLOATS]) {
     const float length = std::sqrt(d2);
     if (length < 1e-6f) return;
     for (float& v : d) v /= length;
-    const float falloff = 4.0f / (1.0f + d2);
+    const float falloff = 3.0f / (2.25f + d2);
     const float lamp[3] = {1.0f * falloff, 0.6f * falloff, 0.3f * falloff};
     tp_sh_add_directional(out, d, lamp);
 }
@@ -133,7 +133,7 @@ Image side_by_side(const std::vector<float>& left, const std::vector<float>& rig
     return image;
 }
 
-void print_row(const char* name, const std::string& value) { std::printf("| %-34s | %18s |\n", name, value.c_str()); }
+void print_row(const char* name, const std::string& value) { std::printf("| %-38s | %22s |\n", name, value.c_str()); }
 
 std::string format(const char* pattern, double value) {
     char text[64];
@@ -189,8 +189,8 @@ void demo_analytic_field(const fs::path& out_dir) {
                         irradiance_up(interpolated), irradiance_up(exact));
     }
 
-    std::printf("\n| %-34s | %18s |\n| %.34s | %.18s |\n", "store", "value", "----------------------------------",
-                "-----------------:");
+    std::printf("\n| %-38s | %22s |\n| %.38s | %.22s |\n", "store", "value", "--------------------------------------",
+                "---------------------:");
     print_row("probes", std::to_string(info.probes));
     print_row("cells (inner + outer)", std::to_string(info.cells) + " (" + std::to_string(info.inner_cells) + " + " +
                                            std::to_string(info.outer_cells) + ")");
@@ -203,7 +203,7 @@ void demo_analytic_field(const fs::path& out_dir) {
     print_row("max SH error inside hull, full", format("%.5f", max_error) + format(" (%.1f%% of max)", 100 * max_error / field_range));
     print_row("max SH error inside hull, linear part", format("%.6f", max_linear_error));
     std::printf("\n(error: |interpolated - analytic| over the 27 coefficients; the linear part (ambient + sun) is "
-                "reproduced up to half precision, the lamp's 1/(1+d^2) term is not)\n");
+                "reproduced up to half precision, the lamp's 1/(r^2+d^2) term is not)\n");
 
     // Picture: slice y = 1.5 over [-2, 12]^2 (outer cells beyond the probes), analytic | interpolated.
     const int size = 360;
@@ -267,8 +267,8 @@ void demo_baked_scene(const fs::path& scene_path, const Arguments& a, const fs::
     StorePtr store = build_store(baked.positions, baked.sh, false);
     const tp_store_info info = store_info(store.get());
 
-    std::printf("\n| %-34s | %18s |\n| %.34s | %.18s |\n", "bake", "value", "----------------------------------",
-                "-----------------:");
+    std::printf("\n| %-38s | %22s |\n| %.38s | %.22s |\n", "bake", "value", "--------------------------------------",
+                "---------------------:");
     print_row("probes", std::to_string(count));
     print_row("rays per probe", std::to_string(settings.rays));
     print_row("bounces (asked / simulated)",
