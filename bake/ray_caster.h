@@ -37,7 +37,7 @@ public:
     bool occluded(const float origin[3], const float direction[3], float t_near, float t_far,
                   int occlusion_set) const;
 
-    // The local vertices of a mesh (3 per vertex) and its kept triangles (3 indices each).
+    // The local vertices of a mesh, 3 floats per vertex (followed by one float of padding).
     const std::vector<float>& local_vertices(uint32_t mesh) const { return meshes_[mesh].vertices; }
 
 private:

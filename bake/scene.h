@@ -62,8 +62,8 @@ struct Sky {
 
 class Scene {
 public:
-    // Validates and adds a mesh; returns its index. label_prefix names the mesh in messages (for
-    // example "scene.json: mesh 2 ('floor')"); empty means "mesh N". NaN vertices, indices or
+    // Validates and adds a mesh; returns its index. label names the mesh in messages (for example
+    // "scene.json: mesh 2 ('floor')"); empty means "mesh N". NaN vertices, indices or
     // triangle materials out of range, invalid materials and meshes without a single non-degenerate
     // triangle throw Error(TP_ERROR_SCENE); zero-area triangles are dropped and counted.
     uint32_t add_mesh(const float* vertices, size_t vertex_count, const uint32_t* indices,
