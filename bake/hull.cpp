@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -82,6 +83,63 @@ void add_facets_1d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& 
     }
 }
 
+// Whether facet f's vertex normals, seen from outside, turn the same way as its corners: the
+// triangle they span far out along the rays (t N_a, t N_b, t N_c) is then not mirrored.
+bool normals_turn_with_facet(const Hull& hull, const HullFacet& f) {
+    const Eigen::Vector3d& a = hull.vertex_normals[f.probes[0]];
+    const Eigen::Vector3d& b = hull.vertex_normals[f.probes[1]];
+    const Eigen::Vector3d& c = hull.vertex_normals[f.probes[2]];
+    return a.dot(b.cross(c)) > 0;
+}
+
+// Averaged normals can mirror the normal triangle of a skinny facet next to a nearly coplanar one;
+// far out, the outer cells of such facets then fold over their neighbours (a point on a hull
+// probe's ray lands in a cell that does not hold the probe). Where that happens, the normals of the
+// facet's probes are relaxed towards the mean of their hull neighbours' normals (a spherical
+// Laplacian step, which untangles the normal mesh), keeping every ray outward of its own facets.
+void untangle_vertex_normals(Hull& hull, const std::vector<Eigen::Vector3d>& p) {
+    std::vector<std::vector<uint32_t>> ring(p.size()), facets_at(p.size());
+    for (uint32_t i = 0; i < hull.facets.size(); ++i) {
+        const HullFacet& f = hull.facets[i];
+        for (int k = 0; k < 3; ++k) {
+            ring[f.probes[size_t(k)]].push_back(f.probes[size_t((k + 1) % 3)]);
+            facets_at[f.probes[size_t(k)]].push_back(i);
+        }
+    }
+    auto outward = [&](uint32_t v, const Eigen::Vector3d& n) {
+        for (uint32_t i : facets_at[v]) {
+            const HullFacet& f = hull.facets[i];
+            const Eigen::Vector3d facet_normal =
+                (p[f.probes[1]] - p[f.probes[0]]).cross(p[f.probes[2]] - p[f.probes[0]]);
+            if (!(facet_normal.dot(n) > 0)) return false;
+        }
+        return true;
+    };
+    for (int round = 0; round < 64; ++round) {
+        std::vector<uint32_t> tangled;
+        for (const HullFacet& f : hull.facets) {
+            if (normals_turn_with_facet(hull, f)) continue;
+            tangled.insert(tangled.end(), f.probes.begin(), f.probes.begin() + 3);
+        }
+        if (tangled.empty()) return;
+        std::sort(tangled.begin(), tangled.end());
+        tangled.erase(std::unique(tangled.begin(), tangled.end()), tangled.end());
+        for (uint32_t v : tangled) {
+            Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+            for (uint32_t u : ring[v]) mean += hull.vertex_normals[u];
+            const Eigen::Vector3d current = hull.vertex_normals[v];
+            // Step halfway; halve again while a ray would point into one of the probe's own facets.
+            for (double step = 0.5; step > 1e-3; step *= 0.5) {
+                const Eigen::Vector3d candidate = ((1 - step) * current + step * mean.normalized()).normalized();
+                if (candidate.allFinite() && outward(v, candidate)) {
+                    hull.vertex_normals[v] = candidate;
+                    break;
+                }
+            }
+        }
+    }
+}
+
 }  // namespace
 
 Hull find_hull(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& positions, const SetShape& shape) {
@@ -97,6 +155,7 @@ Hull find_hull(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& posi
         const double length = normal.norm();
         if (length > 0) normal /= length;
     }
+    if (mesh.dimension == 3) untangle_vertex_normals(hull, positions);
     return hull;
 }
 

@@ -23,9 +23,10 @@ struct SetShape {
     Eigen::Vector3d reduce(const Eigen::Vector3d& p) const;
 };
 
-// Smallest thickness, relative to the diagonal, still treated as 3D whatever the caller's tolerance:
-// a margin above double rounding of the fit, so TetGen never sees an exactly coplanar set.
-constexpr double kMinFlatTolerance = 1e-9;
+// Smallest thickness, relative to the diagonal, still treated as 3D (or 2D) whatever the caller's
+// tolerance: well above float rounding of the stored coordinates (6e-8 of the diagonal), so that no
+// rounding makes a set TetGen sees exactly coplanar (or a plane set exactly collinear).
+constexpr double kMinFlatTolerance = 1e-6;
 
 // Fits line and plane (SelfAdjointEigenSolver on the centred covariance, in double) and compares the
 // largest distances with max(flat_tolerance, kMinFlatTolerance) * diagonal. One point, or a zero

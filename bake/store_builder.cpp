@@ -178,7 +178,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     Eigen::Vector3d origin = Eigen::Vector3d::Zero();
     for (const auto& p : input.positions) origin += p;
     origin /= double(count);
-    std::vector<Eigen::Vector3d> local(count);
+    std::vector<Eigen::Vector3d> local(count);  // float-exact; flat and line sets later projected
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
     for (size_t i = 0; i < count; ++i) {
         for (int a = 0; a < 3; ++a) local[i][a] = double(float(input.positions[i][a] - origin[a]));
@@ -193,6 +193,15 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     std::iota(groups.kept.begin(), groups.kept.end(), 0u);
     groups.group = groups.kept;
     SetShape shape = merge_and_detect(local, diagonal, settings, groups);
+
+    // A flat (line) set is stored on its fitted plane (line): the queries' extrusion across the plane
+    // is then the orthogonal projection every later stage and the run time assume.
+    if (shape.dimension == 1 || shape.dimension == 2) {
+        for (uint32_t i : groups.kept) {
+            const Eigen::Vector3d on_set = shape.centre + shape.axes * shape.reduce(local[i]);
+            for (int a = 0; a < 3; ++a) local[i][a] = double(float(on_set[a]));
+        }
+    }
 
     report_progress(settings, 0.2f, "triangulating");
     std::vector<Eigen::Vector3d> points = gather(local, groups.kept);

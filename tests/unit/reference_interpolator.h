@@ -83,9 +83,20 @@ struct Frame {
     Vec u = Vec::UnitX();  // 1D
 };
 
+// For a flat set, the direction a query's offset is ignored along is the builder's choice (its fitted
+// plane normal), not a property of the positions: it is read from the rows (all inner rows are normal
+// to it; the structure tests check it is one direction, near the triangles' mean normal), with the
+// sign of the mean normal. Without rows to read, the mean normal itself.
 inline Frame frame_of(const StoreData& d) {
     Frame f;
-    if (d.dimension == 2) f.n = plane_normal(d);
+    if (d.dimension == 2) {
+        f.n = plane_normal(d);
+        if (d.inner_matrices.size() >= 12) {
+            const float* m = d.inner_matrices.data();
+            const Vec ignored = Vec(m[0], m[1], m[2]).cross(Vec(m[4], m[5], m[6])).normalized();
+            if (ignored.allFinite()) f.n = ignored.dot(f.n) < 0 ? Vec(-ignored) : ignored;
+        }
+    }
     if (d.dimension == 1) f.u = line_direction(d);
     return f;
 }
@@ -101,16 +112,19 @@ inline void inner_barycentrics(const StoreData& d, const Frame& f, uint32_t c, c
         w[0] = (p - v[1]).dot(f.u) / (v[0] - v[1]).dot(f.u);
         w[1] = 1 - w[0];
     } else if (dim == 2) {
-        const double area = (v[1] - v[0]).cross(v[2] - v[0]).dot(f.n);
-        w[0] = (v[1] - p).cross(v[2] - p).dot(f.n) / area;
-        w[1] = (v[2] - p).cross(v[0] - p).dot(f.n) / area;
-        w[2] = (v[0] - p).cross(v[1] - p).dot(f.n) / area;
+        // Linear in p relative to a vertex (no cancellation of large products for far points).
+        const Vec e0 = v[0] - v[2], e1 = v[1] - v[2], q = p - v[2];
+        const double area = e0.cross(e1).dot(f.n);
+        w[0] = q.cross(e1).dot(f.n) / area;
+        w[1] = e0.cross(q).dot(f.n) / area;
+        w[2] = 1 - w[0] - w[1];
     } else {
-        const double volume = (v[1] - v[0]).cross(v[2] - v[0]).dot(v[3] - v[0]);
-        w[0] = (v[1] - p).cross(v[2] - p).dot(v[3] - p) / volume;
-        w[1] = -(v[0] - p).cross(v[2] - p).dot(v[3] - p) / volume;
-        w[2] = (v[0] - p).cross(v[1] - p).dot(v[3] - p) / volume;
-        w[3] = -(v[0] - p).cross(v[1] - p).dot(v[2] - p) / volume;
+        const Vec e0 = v[0] - v[3], e1 = v[1] - v[3], e2 = v[2] - v[3], q = p - v[3];
+        const double volume = e0.cross(e1).dot(e2);
+        w[0] = q.cross(e1).dot(e2) / volume;
+        w[1] = e0.cross(q).dot(e2) / volume;
+        w[2] = e0.cross(e1).dot(q) / volume;
+        w[3] = 1 - w[0] - w[1] - w[2];
     }
 }
 
@@ -129,10 +143,11 @@ inline double moved_facet_equation(const Vec* P, const Vec* N, uint32_t dim, con
 inline void moved_facet_weights(const Vec* P, const Vec* N, uint32_t dim, const Vec& p, double t, double w[3]) {
     if (dim == 3) {
         const Vec a = P[0] + t * N[0], b = P[1] + t * N[1], c = P[2] + t * N[2];
-        const Vec n = (b - a).cross(c - a);
+        const Vec e0 = a - c, e1 = b - c, q = p - c;
+        const Vec n = e0.cross(e1);
         const double n2 = n.squaredNorm();
-        w[0] = (b - p).cross(c - p).dot(n) / n2;
-        w[1] = (c - p).cross(a - p).dot(n) / n2;
+        w[0] = q.cross(e1).dot(n) / n2;
+        w[1] = e0.cross(q).dot(n) / n2;
         w[2] = 1 - w[0] - w[1];
     } else {
         const Vec a = P[0] + t * N[0], b = P[1] + t * N[1];
@@ -178,67 +193,77 @@ inline double set_diagonal(const StoreData& d) {
     return std::sqrt(s);
 }
 
-// Probes and weights of local point p by brute force over every cell.
-inline Answer locate(const StoreData& d, const Vec& p, double inside_tolerance = 1e-9) {
-    const Frame f = frame_of(d);
+// The weights cell c gives p, and its score (smallest weight; -inf when c cannot hold p: an outer
+// cell with p not beyond its facet, or a degenerate cell).
+inline Answer cell_answer(const StoreData& d, const Frame& f, uint32_t c, const Vec& p) {
     const uint32_t dim = d.dimension;
-    Answer best;
-    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+    Answer a;
+    a.cell = c;
+    a.score = -std::numeric_limits<double>::infinity();
+    if (c < d.inner_cell_count) {
         double w[4] = {0, 0, 0, 0};
         inner_barycentrics(d, f, c, p, w);
         double score = w[0];
-        bool finite = true;
         for (uint32_t k = 0; k <= dim; ++k) {
+            if (!std::isfinite(w[k])) return a;
             score = std::min(score, w[k]);
-            finite = finite && std::isfinite(w[k]);
         }
-        if (!finite || score <= best.score) continue;
-        best.score = score;
-        best.cell = c;
-        best.weights.clear();
+        a.score = score;
         for (uint32_t k = 0; k <= dim; ++k)
-            if (w[k] != 0) best.weights[vertex(d, c, k)] += w[k];
+            if (w[k] != 0) a.weights[vertex(d, c, k)] += w[k];
+        return a;
     }
-    if (best.score >= -inside_tolerance || dim == 0) return best;
+    a.outer = true;
+    Vec P[3], N[3];
+    for (uint32_t k = 0; k < dim; ++k) {
+        P[k] = position(d, vertex(d, c, k));
+        N[k] = normal(d, vertex(d, c, k));
+    }
+    if (dim == 1) {
+        const double beyond = (p - P[0]).dot(N[0]);
+        if (beyond > 0) {
+            a.score = 1;
+            a.t = beyond;
+            a.weights = {{vertex(d, c, 0), 1.0}};
+        }
+        return a;
+    }
+    if (!(moved_facet_equation(P, N, dim, f, p, 0) > 0)) return a;
+    const double reach = 4 * ((p - P[0]).norm() + set_diagonal(d)) + 1;
+    const auto roots = sampled_roots([&](double t) { return moved_facet_equation(P, N, dim, f, p, t); }, reach);
+    for (double t : roots) {
+        double w[3];
+        moved_facet_weights(P, N, dim, p, t, w);
+        double score = w[0];
+        for (uint32_t k = 1; k < dim; ++k) score = std::min(score, w[k]);
+        if (!std::isfinite(score) || score <= a.score) continue;
+        a.score = score;
+        a.t = t;
+        a.weights.clear();
+        for (uint32_t k = 0; k < dim; ++k)
+            if (w[k] != 0) a.weights[vertex(d, c, k)] += w[k];
+    }
+    return a;
+}
+
+// Probes and weights of local point p by brute force over every cell: the inner cell with the largest
+// smallest barycentric coordinate if p is inside the hull, else the best outer cell.
+inline Answer locate(const StoreData& d, const Vec& p, double inside_tolerance = 1e-9) {
+    const Frame f = frame_of(d);
+    Answer best;
+    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+        Answer a = cell_answer(d, f, c, p);
+        if (a.score > best.score) best = std::move(a);
+    }
+    if (best.score >= -inside_tolerance || d.dimension == 0) return best;
     if (d.cell_count() == d.inner_cell_count) {
         best.outside = true;
         return best;
     }
-
     Answer outer;
-    outer.outer = true;
-    const double reach = 4 * ((p - position(d, 0)).norm() + set_diagonal(d)) + 1;
     for (uint32_t c = d.inner_cell_count; c < d.cell_count(); ++c) {
-        Vec P[3], N[3];
-        for (uint32_t k = 0; k < dim; ++k) {
-            P[k] = position(d, vertex(d, c, k));
-            N[k] = normal(d, vertex(d, c, k));
-        }
-        if (dim == 1) {
-            const double beyond = (p - P[0]).dot(N[0]);
-            if (beyond > 0 && outer.score < 1) {
-                outer.score = 1;
-                outer.cell = c;
-                outer.t = beyond;
-                outer.weights = {{vertex(d, c, 0), 1.0}};
-            }
-            continue;
-        }
-        if (!(moved_facet_equation(P, N, dim, f, p, 0) > 0)) continue;
-        const auto roots = sampled_roots([&](double t) { return moved_facet_equation(P, N, dim, f, p, t); }, reach);
-        for (double t : roots) {
-            double w[3];
-            moved_facet_weights(P, N, dim, p, t, w);
-            double score = w[0];
-            for (uint32_t k = 1; k < dim; ++k) score = std::min(score, w[k]);
-            if (!std::isfinite(score) || score <= outer.score) continue;
-            outer.score = score;
-            outer.cell = c;
-            outer.t = t;
-            outer.weights.clear();
-            for (uint32_t k = 0; k < dim; ++k)
-                if (w[k] != 0) outer.weights[vertex(d, c, k)] += w[k];
-        }
+        Answer a = cell_answer(d, f, c, p);
+        if (a.score > outer.score) outer = std::move(a);
     }
     return outer.score > best.score ? outer : best;
 }

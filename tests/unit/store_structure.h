@@ -148,6 +148,13 @@ inline void check_outer_geometry(const StoreData& d) {
         }
         INFO("outer cell " << c);
         REQUIRE(side < 0);
+        // Far out the moved facet is t (N0, N1, N2): it must turn like the facet, or the cell folds
+        // over its neighbours.
+        if (dim == 3) {
+            Vec n[3];
+            for (uint32_t k = 0; k < 3; ++k) n[k] = reference::normal(d, d.cell_vertices[4 * size_t(c) + k]);
+            REQUIRE(n[0].dot(n[1].cross(n[2])) > 0);
+        }
     }
     for (uint32_t j = 0; j < d.probe_count(); ++j) {
         const double length = reference::normal(d, j).norm();
@@ -207,7 +214,7 @@ inline double check_inner_matrices(const StoreData& d, uint32_t seed, uint32_t m
             if (c == 0) first = ignored;
             INFO("cell " << c);
             REQUIRE(std::fabs(std::fabs(ignored.dot(first)) - 1) < 1e-6);
-            REQUIRE(ignored.cross(frame.n).norm() < 1e-3);
+            REQUIRE(ignored.cross(reference::plane_normal(d)).norm() < 1e-3);
         }
     }
     return worst;
