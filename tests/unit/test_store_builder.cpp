@@ -4,6 +4,11 @@
 #include "reference_interpolator.h"
 #include "store_structure.h"
 
+#include "bake/delaunay.h"
+#include "bake/hull_slivers.h"
+#include "bake/probe_merge.h"
+#include "bake/set_dimension.h"
+#include "bake/start_grid.h"
 #include "bake/store_builder.h"
 #include "capi/tetprobe.h"
 #include "core/error.h"
@@ -11,6 +16,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -353,4 +359,89 @@ TEST_CASE("builder: the data writes a blob that loads and answers at the probes"
             }
         }
     }
+}
+
+TEST_CASE("builder: merging keeps the first probe of each group and leaves survivors apart", "[builder]") {
+    std::vector<Eigen::Vector3d> points = {{0, 0, 0}, {0.5, 0, 0}, {1.0, 0, 0}, {0.9, 0, 0}, {0, 0, 0}, {3, 3, 3}};
+    const tetprobe::ProbeMerge merge = tetprobe::merge_close_points(points, 0.6);
+    // 0 survives; 0.5 joins 0; 1.0 survives (1.0 from 0); 0.9 joins 1.0 (0.9 from 0 is too far);
+    // the duplicate of 0 joins 0; (3,3,3) survives.
+    REQUIRE(merge.survivors == std::vector<uint32_t>{0, 2, 5});
+    REQUIRE(merge.group_of == std::vector<uint32_t>{0, 0, 1, 1, 0, 2});
+    const tetprobe::ProbeMerge exact = tetprobe::merge_close_points(points, 0.0);
+    REQUIRE(exact.survivors == std::vector<uint32_t>{0, 1, 2, 3, 5});
+    REQUIRE(exact.group_of[4] == 0);
+}
+
+TEST_CASE("builder: dimension detection compares thickness with the flat tolerance times the diagonal", "[builder]") {
+    std::vector<Eigen::Vector3d> points;
+    for (int i = 0; i < 10; ++i)
+        for (int j = 0; j < 10; ++j) points.emplace_back(i, j, (i * j) % 2 ? 1e-3 : 0.0);
+    const double diagonal = std::sqrt(81.0 + 81.0 + 1e-6);
+    REQUIRE(tetprobe::detect_set_dimension(points, diagonal, 1e-3).dimension == 2);
+    REQUIRE(tetprobe::detect_set_dimension(points, diagonal, 1e-5).dimension == 3);
+    // The caller's tolerance never goes below the float-rounding floor.
+    std::vector<Eigen::Vector3d> thin = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1e-9}};
+    REQUIRE(tetprobe::detect_set_dimension(thin, std::sqrt(2.0), 0.0).dimension == 2);
+    std::vector<Eigen::Vector3d> line = {{0, 0, 0}, {1, 1, 1}, {2, 2, 2 + 1e-8}};
+    const tetprobe::SetShape shape = tetprobe::detect_set_dimension(line, std::sqrt(12.0), 1e-4);
+    REQUIRE(shape.dimension == 1);
+    REQUIRE(std::fabs(shape.axes.col(0).dot(Eigen::Vector3d(1, 1, 1).normalized())) == Approx(1));
+}
+
+TEST_CASE("builder: start grid dimensions follow the extents within the cell budget", "[builder]") {
+    uint32_t g[3];
+    const float lo[3] = {0, 0, 0}, cube[3] = {10, 10, 10}, flat[3] = {20, 10, 0}, box[3] = {40, 10, 10};
+    tetprobe::start_grid_dimensions(lo, cube, 4000, g);
+    REQUIRE(g[0] == 10);
+    REQUIRE(g[1] == 10);
+    REQUIRE(g[2] == 10);
+    tetprobe::start_grid_dimensions(lo, flat, 800, g);
+    REQUIRE(g[2] == 1);
+    REQUIRE(g[0] == 2 * g[1]);
+    tetprobe::start_grid_dimensions(lo, box, 100000000, g);
+    REQUIRE(size_t(g[0]) * g[1] * g[2] <= tetprobe::kMaxStartGridCells);
+    REQUIRE(g[0] > 3 * g[1]);
+    tetprobe::start_grid_dimensions(lo, lo, 1, g);
+    REQUIRE(g[0] * g[1] * g[2] == 1);
+}
+
+TEST_CASE("builder: slivers on the hull are peeled and their probes keep a cell", "[builder]") {
+    // A cube with corners a few ulps off (a "lattice plus eps" cell) and its centre: Delaunay leaves
+    // flat cells between nearly coplanar corners on the hull.
+    const std::vector<Eigen::Vector3d> p = {
+        {-7.43751104e-07, 8.65114723e-07, 9.94369616e-07}, {-2.06838548e-07, -5.27822047e-07, 4.000001},
+        {8.71078145e-07, 4.00000034, -2.24178519e-07},     {4.90963257e-08, 3.99999963, 4.00000069},
+        {4.00000007, -5.4084556e-07, -1.13094212e-07},     {3.99999986, -8.55903814e-08, 4.00000083},
+        {4.00000043, 4.00000056, 8.7825559e-07},           {4.00000004, 3.99999919, 4.00000061},
+        {2, 2, 2}};
+    const tetprobe::SetShape shape = tetprobe::detect_set_dimension(p, 7, 1e-4);
+    REQUIRE(shape.dimension == 3);
+    tetprobe::SimplexMesh mesh = tetprobe::delaunay_tetrahedralize(p);
+    auto thin_hull_cells = [&] {
+        size_t thin = 0;
+        for (size_t c = 0; c < mesh.cell_count(); ++c) {
+            bool hull = false;
+            for (int k = 0; k < 4; ++k) hull = hull || mesh.neighbours[c][k] == tetprobe::kNone32;
+            thin += hull && tetprobe::cell_thickness(mesh, c, p, shape) < tetprobe::kSliverThickness;
+        }
+        return thin;
+    };
+    const size_t before = thin_hull_cells(), cells = mesh.cell_count();
+    REQUIRE(before > 0);
+    const size_t peeled = tetprobe::peel_hull_slivers(mesh, p, shape);
+    REQUIRE(peeled >= before);
+    REQUIRE(mesh.cell_count() == cells - peeled);
+    REQUIRE(thin_hull_cells() == 0);
+    std::vector<int> used(p.size(), 0);
+    for (size_t c = 0; c < mesh.cell_count(); ++c) {
+        for (int k = 0; k < 4; ++k) {
+            used[mesh.vertices[c][k]] = 1;
+            const uint32_t n = mesh.neighbours[c][k];
+            if (n == tetprobe::kNone32) continue;
+            REQUIRE(n < mesh.cell_count());
+            REQUIRE(std::count(mesh.neighbours[n].begin(), mesh.neighbours[n].end(), uint32_t(c)) == 1);
+        }
+    }
+    REQUIRE(std::count(used.begin(), used.end(), 1) == int(p.size()));
 }
