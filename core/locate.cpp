@@ -14,6 +14,7 @@ namespace tetprobe {
 namespace {
 
 constexpr uint32_t kNoCell = 0xFFFFFFFFu;
+constexpr uint32_t kRecentCells = 8;
 constexpr double kInsideToleranceD = double(kInsideTolerance);
 
 template <class Index>
@@ -131,15 +132,17 @@ bool all_finite(const double* w, int n) {
 struct OuterView {
     bool finite = true;
     double f0 = 0;        // f(0) = c3: > 0 strictly beyond the hull facet
-    bool found = false;   // a parameter t was chosen
+    bool holds = false;   // a parameter t >= 0 puts p in the plane (line) of the moved facet
+    bool judged = false;  // weights are available (at that t, or at the guess when no t exists)
     double t = 0;
     double weights[3] = {0, 0, 0};  // over slots 0..d-1
 };
 
-template <class Index>
 // came_from_base: the walk arrived from the inner cell below, so a point on (or numerically just
-// inside) the hull facet is judged here at t = 0 instead of being sent back.
-OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, bool came_from_base) {
+// inside) the hull facet is judged here at t = 0 instead of being sent back. guess_t (>= 0, or
+// negative for none): where to judge p when no t >= 0 exists, only to choose the way out.
+template <class Index>
+OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, bool came_from_base, double guess_t) {
     const Store::Impl& s = cells.s;
     const uint32_t d = s.dimension;
     const float* m = s.outer_matrices + 16 * size_t(cell - s.inner_cell_count);
@@ -150,7 +153,7 @@ OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, b
     v.f0 = c[3];
     if (!v.finite || (c[3] <= 0 && !came_from_base)) return v;  // not beyond the facet: the inner cell decides
     if (d == 1) {
-        v.found = true;
+        v.holds = v.judged = true;
         v.t = c[3] > 0 ? c[3] : 0.0;
         v.weights[0] = 1.0;
         return v;
@@ -164,7 +167,11 @@ OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, b
         const int n = cubic_real_roots(c[0], c[1], c[2], c[3], roots);
         for (int i = 0; i < n; ++i)
             if (roots[i] >= 0) candidates[count++] = roots[i];
-        if (count == 0) candidates[count++] = 0.0;  // the moving facet never meets p: judge at the hull
+    }
+    v.holds = count > 0;
+    if (!v.holds) {
+        if (!(guess_t >= 0)) return v;
+        candidates[count++] = guess_t;  // the moving facet never meets p: judge near where it should
     }
     Vec3 corner[3], normal[3];
     for (uint32_t k = 0; k < d; ++k) {
@@ -184,12 +191,24 @@ OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, b
         const double score = minimum(w, int(d));
         if (score > best_score) {
             best_score = score;
-            v.found = true;
+            v.judged = true;
             v.t = t;
             for (uint32_t k = 0; k < d; ++k) v.weights[k] = w[k];
         }
     }
+    v.holds = v.holds && v.judged;
     return v;
+}
+
+// Distance from p to the centroid of an outer cell's hull facet: roughly the t of p's moved facet
+// (probes move at unit speed along their normals).
+template <class Index>
+double facet_distance(const CellView<Index>& cells, uint32_t cell, Vec3 p) {
+    const uint32_t d = cells.s.dimension;
+    Vec3 centroid{0, 0, 0};
+    for (uint32_t k = 0; k < d; ++k) centroid = centroid + probe_position(cells.s, cells.vertex(cell, k));
+    const Vec3 offset = p - (1.0 / double(d)) * centroid;
+    return std::sqrt(dot(offset, offset));
 }
 
 // Fills the probes and weights of a location: negatives clamped to zero, renormalised to sum 1,
@@ -219,19 +238,33 @@ void set_weights(const CellView<Index>& cells, uint32_t cell, uint32_t used, con
     }
 }
 
-// The slot to leave a cell through: the most negative coordinate whose neighbour is not the cell we
-// came from. Returns -1 when the only way out leads straight back (p sits on the shared face).
+// Two cells may disagree by rounding about which side of their shared face p is on; within this
+// tolerance the walk stops on the face instead of going back.
+constexpr double kSharedFaceTolerance = 1e-4;
+
+// The slot to leave a cell through: the most negative weight whose neighbour is not the cell we came
+// from (with may_stop, only weights below -kInsideTolerance count). Returns -1 to stop here: with
+// may_stop, when the only way out leads straight back by less than kSharedFaceTolerance, or when
+// there is no neighbour at all.
 template <class Index>
-int exit_slot(const CellView<Index>& cells, uint32_t cell, const double* w, uint32_t slots, uint32_t previous) {
-    int best = -1;
-    double best_value = -kInsideToleranceD;
+int exit_slot(const CellView<Index>& cells, uint32_t cell, const double* w, uint32_t slots, uint32_t previous,
+              bool may_stop) {
+    int best = -1, back = -1;
+    double best_value = may_stop ? -kInsideToleranceD : std::numeric_limits<double>::infinity();
+    double back_value = std::numeric_limits<double>::infinity();
     for (uint32_t k = 0; k < slots; ++k) {
-        if (w[k] < best_value && cells.neighbour(cell, k) != previous) {
-            best_value = w[k];
-            best = int(k);
+        const uint32_t n = cells.neighbour(cell, k);
+        if (n == kNoCell) continue;
+        if (n == previous) {
+            if (w[k] < back_value) back_value = w[k], back = int(k);
+        } else if (w[k] < best_value) {
+            best_value = w[k], best = int(k);
         }
     }
-    return best;
+    if (best >= 0) return best;
+    if (back < 0) return -1;
+    if (may_stop && back_value >= -kSharedFaceTolerance) return -1;
+    return back;  // a real disagreement: going back lets the step cap and the exhaustive search settle it
 }
 
 template <class Index>
@@ -261,8 +294,8 @@ Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
                 tetrahedron_weights(v[0], v[1], v[2], v[3], p, w);
         } else {
             used = d;
-            const OuterView o = view_outer_cell(cells, cell, p, false);
-            if (!o.finite || !o.found || !(o.f0 > 0)) continue;
+            const OuterView o = view_outer_cell(cells, cell, p, false, -1.0);
+            if (!o.finite || !o.holds || !(o.f0 > 0)) continue;
             t = o.t;
             for (uint32_t k = 0; k < d; ++k) w[k] = o.weights[k];
         }
@@ -303,8 +336,17 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
     const uint32_t d = s.dimension;
     uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(local);
     uint32_t previous = kNoCell;
+    double last_t = -1.0;  // t of the last outer cell that held p's moved facet
+    // The last few cells: a walk that comes back to one of them is cycling, which a consistent
+    // walk never does, so the exhaustive search takes over at once.
+    uint32_t recent[kRecentCells];
+    for (uint32_t& r : recent) r = kNoCell;
     uint32_t steps = 0;
     for (; steps <= s.step_cap; ++steps) {
+        bool cycling = false;
+        for (uint32_t r : recent) cycling |= r == cell;
+        if (cycling) break;
+        recent[steps % kRecentCells] = cell;
         Location loc;
         loc.cell = int32_t(cell);
         loc.steps = steps;
@@ -331,29 +373,34 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
                     return loc;
                 }
             }
-            slot = exit_slot(cells, cell, w, d + 1, previous);
+            slot = exit_slot(cells, cell, w, d + 1, previous, true);
             if (slot < 0) {
                 set_weights(cells, cell, d + 1, w, loc);
                 return loc;
             }
         } else {
             const uint32_t base = cells.neighbour(cell, d);
-            const OuterView o = view_outer_cell(cells, cell, p, base == previous);
+            const double guess_t = last_t >= 0 ? last_t : facet_distance(cells, cell, p);
+            const OuterView o = view_outer_cell(cells, cell, p, base == previous, guess_t);
             if (!o.finite) break;
             if (o.f0 <= 0 && base != previous) {
                 previous = cell;
                 cell = base;
                 continue;
             }
-            if (!o.found) break;
+            if (!o.judged) break;
             loc.kind = TP_CELL_OUTER;
             loc.t = float(o.t);
-            if (minimum(o.weights, int(d)) >= -kInsideToleranceD) {
-                set_weights(cells, cell, d, o.weights, loc);
-                return loc;
+            if (o.holds) {
+                last_t = o.t;
+                if (minimum(o.weights, int(d)) >= -kInsideToleranceD) {
+                    set_weights(cells, cell, d, o.weights, loc);
+                    return loc;
+                }
             }
-            slot = exit_slot(cells, cell, o.weights, d, previous);
-            if (slot < 0 || cells.neighbour(cell, uint32_t(slot)) == kNoCell) {
+            slot = exit_slot(cells, cell, o.weights, d, previous, o.holds);
+            if (slot < 0) {
+                if (!o.holds) break;  // p is not in this cell and there is nowhere to go
                 set_weights(cells, cell, d, o.weights, loc);
                 return loc;
             }
@@ -361,7 +408,7 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
         previous = cell;
         cell = cells.neighbour(cell, uint32_t(slot));
     }
-    // Lost (a numerical cycle or an undecidable cell): decide over all cells in double.
+    // Lost (a cycle, the step cap, or an undecidable cell): decide over all cells in double.
     Location loc = locate_exhaustive_typed<Index>(s, local);
     loc.steps = steps;
     return loc;

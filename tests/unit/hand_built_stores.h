@@ -212,9 +212,12 @@ inline StoreData tetrahedron_store(const std::array<Vec, 4>& corners, bool extra
         int n = 0;
         for (uint32_t j = 0; j < 4; ++j)
             if (j != k) f[n++] = j;
-        faces[k] = f;
         Vec nrm = (corners[f[1]] - corners[f[0]]).cross(corners[f[2]] - corners[f[0]]).normalized();
-        if (nrm.dot(corners[f[0]] - centroid) < 0) nrm = -nrm;
+        if (nrm.dot(corners[f[0]] - centroid) < 0) {
+            std::swap(f[1], f[2]);  // outward winding, as the builder's hull facets have
+            nrm = -nrm;
+        }
+        faces[k] = f;
         face_normal[k] = nrm;
     }
     // Radial rays from the centroid never cross, so the outer cells tile everything outside.

@@ -1,0 +1,371 @@
+// The walk: its answer equals a brute-force search over all cells (the slow reference in
+// reference_interpolator.h, from positions and normals only) on hand-built stores and on built
+// stores of every probe-set family; hints never change the answer; threads agree with a serial run;
+// stores without extrapolation report TP_ERROR_OUTSIDE; a misled walk ends in the exhaustive search.
+#include "hand_built_stores.h"
+#include "probe_families.h"
+#include "reference_interpolator.h"
+
+#include "bake/store_builder.h"
+#include "core/store.h"
+#include "core/store_data.h"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+using namespace tetprobe;
+
+namespace {
+
+struct Query {
+    float world[3];
+    reference::Vec local;  // exactly the float world position minus the origin, in double
+};
+
+// GCC 12 at -O2 (SLP vectorizer) was seen to fold double(float(a + b)) - a into b, dropping the
+// rounding to float; reading the stored floats back through a volatile keeps it.
+Query make_query(const StoreData& d, const reference::Vec& local_target) {
+    Query q;
+    for (int k = 0; k < 3; ++k) q.world[k] = float(d.origin[k] + local_target[k]);
+    const volatile float* world = q.world;
+    q.local = reference::Vec(double(world[0]) - d.origin[0], double(world[1]) - d.origin[1], double(world[2]) - d.origin[2]);
+    return q;
+}
+
+std::map<uint32_t, double> weight_map(const Location& loc) {
+    std::map<uint32_t, double> m;
+    for (int k = 0; k < 4; ++k)
+        if (loc.weights[k] != 0) m[loc.probes[k]] += loc.weights[k];
+    return m;
+}
+
+double weight_difference(const std::map<uint32_t, double>& a, const std::map<uint32_t, double>& b) {
+    double worst = 0;
+    for (const auto& e : a) {
+        const auto it = b.find(e.first);
+        worst = std::fmax(worst, std::fabs(e.second - (it == b.end() ? 0.0 : it->second)));
+    }
+    for (const auto& e : b)
+        if (!a.count(e.first)) worst = std::fmax(worst, std::fabs(e.second));
+    return worst;
+}
+
+std::string describe(const std::map<uint32_t, double>& weights) {
+    std::ostringstream out;
+    for (const auto& w : weights) out << w.first << ":" << w.second << " ";
+    return out.str();
+}
+
+// Query points: inside and around the bounds, plus far away in every direction.
+std::vector<reference::Vec> query_points(const StoreData& d, int count, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(-0.5, 1.5);
+    std::normal_distribution<double> g;
+    reference::Vec lo(d.bounds_min[0], d.bounds_min[1], d.bounds_min[2]);
+    reference::Vec hi(d.bounds_max[0], d.bounds_max[1], d.bounds_max[2]);
+    const double diagonal = std::fmax((hi - lo).norm(), 1e-30);
+    std::vector<reference::Vec> points;
+    for (int i = 0; i < count; ++i) {
+        reference::Vec p;
+        if (i % 10 == 9) {
+            p = reference::Vec(g(rng), g(rng), g(rng)).normalized() * diagonal * 50.0 + 0.5 * (lo + hi);
+        } else {
+            for (int k = 0; k < 3; ++k) p[k] = lo[k] + u(rng) * (hi[k] - lo[k] + (hi[k] > lo[k] ? 0 : diagonal));
+        }
+        points.push_back(p);
+    }
+    return points;
+}
+
+struct Built {
+    StoreData data;
+    std::unique_ptr<Store> store;
+};
+
+Built build(const std::vector<float>& positions, uint32_t flags = 0) {
+    BuildSettings settings;
+    settings.flags = flags;
+    Built b;
+    b.data = build_store_data(positions.data(), 12, nullptr, 108, positions.size() / 3, settings);
+    const std::vector<uint8_t> blob = write_store_blob(b.data);
+    b.store = Store::load(blob.data(), blob.size());
+    return b;
+}
+
+Built load(const StoreData& data) {
+    Built b;
+    b.data = data;
+    const std::vector<uint8_t> blob = write_store_blob(data);
+    b.store = Store::load(blob.data(), blob.size());
+    return b;
+}
+
+// Walk (cold, and from the previous query's cell) against the reference at every query point.
+// Near the probes the walk never needs its fallback; far away (tens of diagonals) neighbouring outer
+// cells' sweeps may disagree and the exhaustive search may decide, still matching the reference.
+void require_walk_matches_reference(const Built& b, const std::vector<reference::Vec>& points, double tolerance) {
+    int32_t hint = -1;
+    double worst = 0;
+    int far_fallbacks = 0;
+    const reference::Vec centre = 0.5 * (reference::Vec(b.data.bounds_min[0], b.data.bounds_min[1], b.data.bounds_min[2]) +
+                                         reference::Vec(b.data.bounds_max[0], b.data.bounds_max[1], b.data.bounds_max[2]));
+    const double diagonal = reference::set_diagonal(b.data);
+    for (const reference::Vec& target : points) {
+        const bool far = (target - centre).norm() > 3 * diagonal;
+        const Query q = make_query(b.data, target);
+        const reference::Answer expected = reference::locate(b.data, q.local);
+        for (int32_t start : {int32_t(-1), hint}) {
+            const Location loc = b.store->locate(q.world, start);
+            INFO(std::setprecision(17) << "query local (" << q.local.x() << ", " << q.local.y() << ", " << q.local.z()
+                                       << ") world (" << q.world[0] << ", " << q.world[1] << ", " << q.world[2]
+                                       << ") origin (" << b.data.origin[0] << ", " << b.data.origin[1] << ", "
+                                       << b.data.origin[2] << ") start " << start);
+            if (expected.outside) {
+                REQUIRE(loc.status == TP_ERROR_OUTSIDE);
+                continue;
+            }
+            REQUIRE(loc.status == TP_OK);
+            if (far)
+                far_fallbacks += loc.fallback;
+            else
+                REQUIRE(!loc.fallback);
+            const double difference = weight_difference(weight_map(loc), expected.weights);
+            INFO("walk: cell " << loc.cell << " kind " << loc.kind << " t " << loc.t << " weights " << describe(weight_map(loc))
+                               << "; reference: cell " << expected.cell << " t " << expected.t << " weights "
+                               << describe(expected.weights));
+            worst = std::fmax(worst, difference);
+            REQUIRE(difference <= tolerance);
+            // A point clearly inside one cell must be found in that very cell.
+            if (expected.score > 1e-3) REQUIRE(uint32_t(loc.cell) == expected.cell);
+            hint = loc.cell;
+        }
+    }
+    INFO("largest weight difference " << worst << ", far queries decided by the fallback " << far_fallbacks);
+    SUCCEED();
+}
+
+}  // namespace
+
+TEST_CASE("walk = brute force: hand-built tetrahedron, line and point", "[locate]") {
+    const std::array<hand_built::Vec, 4> corners = {hand_built::Vec(0.1, -0.2, 0.05), hand_built::Vec(1.3, 0.1, -0.1),
+                                                    hand_built::Vec(0.2, 1.1, 0.3), hand_built::Vec(0.4, 0.3, 1.2)};
+    for (bool extrapolate : {false, true}) {
+        const Built tet = load(hand_built::tetrahedron_store(corners, extrapolate));
+        require_walk_matches_reference(tet, query_points(tet.data, 400, 1), 1e-4);
+        const Built line = load(hand_built::line_store({-2, 0, 0.5, 3, 7}, extrapolate));
+        require_walk_matches_reference(line, query_points(line.data, 200, 2), 1e-5);
+    }
+    const Built point = load(hand_built::point_store());
+    for (const reference::Vec& p : query_points(point.data, 50, 3)) {
+        const Query q = make_query(point.data, p);
+        const Location loc = point.store->locate(q.world, -1);
+        REQUIRE(loc.status == TP_OK);
+        REQUIRE(loc.probes[0] == 0);
+        REQUIRE(loc.weights[0] == 1.0f);
+    }
+}
+
+TEST_CASE("walk = brute force on built stores of every family", "[locate]") {
+    std::vector<families::ProbeSet> sets = {
+        families::random_cloud(120, 5),
+        families::lattice(4, 4, 3),                       // cospherical: Delaunay ties everywhere
+        families::lattice(4, 4, 4, 1.0, 2.4e-7, 9),       // lattice plus a few ulps of jitter
+        families::slab(5, 1e-3),
+        families::plane(40, 4),
+        families::tilted_plane_rounded(40, 6),
+        families::line(7),
+        families::racetrack(24),
+        families::random_cloud(60, 8, 10, 1e3),           // a kilometre from the origin
+        families::random_cloud(60, 9, 10, 1e6),           // a thousand kilometres
+        families::random_cloud(60, 10, 1e-4),             // tiny
+        families::random_cloud(60, 11, 1e5),              // huge
+    };
+    for (int n = 1; n <= 3; ++n) sets.push_back(families::random_cloud(size_t(n), 20 + n));
+    for (const families::ProbeSet& set : sets) {
+        for (uint32_t flags : {0u, uint32_t(TP_BUILD_NO_EXTRAPOLATION)}) {
+            INFO(set.name << " with " << set.count() << " probes, flags " << flags);
+            const Built b = build(set.positions, flags);
+            require_walk_matches_reference(b, query_points(b.data, 150, 7), 2e-4);
+        }
+    }
+}
+
+TEST_CASE("every input probe is exact and linear fields are reproduced inside the hull", "[locate]") {
+    for (const families::ProbeSet& set : {families::random_cloud(200, 31), families::plane(50, 32), families::line(9)}) {
+        const Built b = build(set.positions);
+        int32_t hint = -1;
+        for (size_t i = 0; i < set.count(); ++i) {
+            const Location loc = b.store->locate(&set.positions[3 * i], hint);
+            REQUIRE(loc.status == TP_OK);
+            const uint32_t survivor = b.store->input_to_stored(uint32_t(i));
+            REQUIRE(weight_map(loc)[survivor] == Approx(1.0).margin(1e-5));
+            hint = loc.cell;
+        }
+        // sum_k w_k P_k = p at points inside the hull (the weights are barycentric coordinates).
+        for (const reference::Vec& target : query_points(b.data, 300, 33)) {
+            const Query q = make_query(b.data, target);
+            const reference::Answer expected = reference::locate(b.data, q.local);
+            if (expected.outer || expected.outside) continue;
+            const Location loc = b.store->locate(q.world, -1);
+            REQUIRE(loc.kind == TP_CELL_INNER);
+            reference::Vec blended = reference::Vec::Zero();
+            float sum = 0;
+            for (int k = 0; k < 4; ++k) {
+                REQUIRE(loc.weights[k] >= 0.0f);
+                REQUIRE(loc.weights[k] <= 1.0f);
+                sum += loc.weights[k];
+                blended += double(loc.weights[k]) * reference::position(b.data, loc.probes[k]);
+            }
+            REQUIRE(sum == Approx(1.0f).margin(1e-6));
+            // Off the line or plane of a lower-dimensional set, the point's projection is reproduced.
+            const reference::Vec residual = blended - q.local;
+            const double diagonal = reference::set_diagonal(b.data);
+            if (b.data.dimension == 3) REQUIRE(residual.norm() <= 1e-5 * diagonal);
+        }
+    }
+}
+
+TEST_CASE("hints never change the answer", "[locate]") {
+    const Built b = build(families::random_cloud(150, 41).positions);
+    std::mt19937 rng(42);
+    std::uniform_int_distribution<int32_t> any_cell(-3, int32_t(b.data.cell_count()) + 3);
+    for (const reference::Vec& target : query_points(b.data, 200, 43)) {
+        const Query q = make_query(b.data, target);
+        const Location cold = b.store->locate(q.world, -1);
+        for (int trial = 0; trial < 5; ++trial) {
+            const Location warm = b.store->locate(q.world, any_cell(rng));
+            REQUIRE(warm.status == cold.status);
+            REQUIRE(weight_difference(weight_map(warm), weight_map(cold)) <= 1e-4);
+        }
+    }
+}
+
+TEST_CASE("many threads querying one store get the serial results", "[locate]") {
+    const Built b = build(families::random_cloud(300, 51).positions);
+    const std::vector<reference::Vec> targets = query_points(b.data, 2000, 52);
+    std::vector<Query> queries;
+    for (const auto& t : targets) queries.push_back(make_query(b.data, t));
+    auto run = [&](std::vector<float>& out) {
+        out.assign(queries.size() * 27, 0.0f);
+        int32_t hint = -1;
+        for (size_t i = 0; i < queries.size(); ++i) b.store->interpolate(queries[i].world, &hint, &out[27 * i]);
+    };
+    std::vector<float> serial;
+    run(serial);
+    const int thread_count = 8;
+    std::vector<std::vector<float>> results(thread_count);
+    std::vector<std::thread> threads;
+    for (int t = 0; t < thread_count; ++t) threads.emplace_back([&, t] { run(results[t]); });
+    for (auto& t : threads) t.join();
+    for (const auto& r : results) REQUIRE(std::memcmp(r.data(), serial.data(), serial.size() * sizeof(float)) == 0);
+}
+
+TEST_CASE("without extrapolation, points beyond the hull are TP_ERROR_OUTSIDE and points on it are inside", "[locate]") {
+    const std::array<hand_built::Vec, 4> corners = {hand_built::Vec(0, 0, 0), hand_built::Vec(1, 0, 0),
+                                                    hand_built::Vec(0, 1, 0), hand_built::Vec(0, 0, 1)};
+    const Built b = load(hand_built::tetrahedron_store(corners, false));
+    const float outside[][3] = {{-0.01f, 0.2f, 0.2f}, {0.5f, 0.5f, 0.5f}, {0.2f, 0.2f, -1e9f}, {1e9f, 1e9f, 1e9f}};
+    for (const auto& p : outside) {
+        REQUIRE(b.store->locate(p, -1).status == TP_ERROR_OUTSIDE);
+        int32_t hint = 0;
+        float sh[27];
+        REQUIRE(b.store->interpolate(p, &hint, sh) == TP_ERROR_OUTSIDE);
+        for (float x : sh) REQUIRE(x == 0.0f);
+    }
+    const float on_hull[][3] = {{0, 0.2f, 0.2f}, {1, 0, 0}, {0.5f, 0.5f, 0}, {1.0f / 3, 1.0f / 3, 1.0f / 3}};
+    for (const auto& p : on_hull) REQUIRE(b.store->locate(p, -1).status == TP_OK);
+}
+
+TEST_CASE("outer cells: continuous across the hull and equal to the hull probe along its ray", "[locate]") {
+    const Built b = build(families::random_cloud(80, 61).positions);
+    // Along each hull probe's ray the weight stays 1 on that probe.
+    for (uint32_t probe = 0; probe < b.data.probe_count(); ++probe) {
+        const reference::Vec n = reference::normal(b.data, probe);
+        if (n.norm() == 0) continue;
+        for (double t : {0.0, 0.5, 3.0, 100.0}) {
+            const Query q = make_query(b.data, reference::position(b.data, probe) + t * n);
+            const Location loc = b.store->locate(q.world, -1);
+            REQUIRE(loc.status == TP_OK);
+            REQUIRE(weight_map(loc)[probe] == Approx(1.0).margin(2e-4));
+        }
+    }
+    // Random segments from inside to far outside: weights may change fast in thin cells, so every
+    // large change between samples is narrowed by bisection; a continuous field's change vanishes
+    // with the interval, a jump would stay.
+    std::mt19937 rng(62);
+    std::normal_distribution<double> g;
+    const double diagonal = reference::set_diagonal(b.data);
+    auto weights_at = [&](const reference::Vec& p) {
+        const Query q = make_query(b.data, p);
+        const Location loc = b.store->locate(q.world, -1);
+        REQUIRE(loc.status == TP_OK);
+        return weight_map(loc);
+    };
+    double largest_jump = 0;
+    int narrowed = 0;
+    for (int segment = 0; segment < 40; ++segment) {
+        const reference::Vec a(g(rng), g(rng), g(rng));
+        const reference::Vec e = reference::Vec(g(rng), g(rng), g(rng)).normalized() * diagonal * 2;
+        const int steps = 200;
+        std::map<uint32_t, double> previous = weights_at(a);
+        for (int i = 1; i <= steps; ++i) {
+            const std::map<uint32_t, double> current = weights_at(a + e * (double(i) / steps));
+            if (weight_difference(current, previous) > 0.05) {
+                ++narrowed;
+                reference::Vec lo = a + e * (double(i - 1) / steps), hi = a + e * (double(i) / steps);
+                std::map<uint32_t, double> w_lo = previous, w_hi = current;
+                for (int k = 0; k < 30; ++k) {
+                    const reference::Vec mid = 0.5 * (lo + hi);
+                    const std::map<uint32_t, double> w_mid = weights_at(mid);
+                    if (weight_difference(w_mid, w_lo) > weight_difference(w_mid, w_hi))
+                        hi = mid, w_hi = w_mid;
+                    else
+                        lo = mid, w_lo = w_mid;
+                }
+                largest_jump = std::fmax(largest_jump, weight_difference(w_lo, w_hi));
+            }
+            previous = current;
+        }
+    }
+    INFO("largest weight change left after narrowing " << narrowed << " fast changes to 2^-30 of a step: "
+                                                         << largest_jump);
+    REQUIRE(largest_jump < 1e-3);
+}
+
+TEST_CASE("a walk misled by inconsistent matrices ends in the exhaustive double-precision decision", "[locate]") {
+    using tetprobe::kNone32;
+    // A square of four triangles around its centre, whose matrices all say "leave through slot 0":
+    // the walk circles the centre until the step cap, then the exhaustive search decides.
+    StoreData d;
+    d.dimension = 2;
+    d.flags = kFlagNoExtrapolation;
+    d.positions = {0, 0, 0, 2, 0, 0, 2, 2, 0, 0, 2, 0, 1, 1, 0};
+    d.inner_cell_count = 4;
+    for (uint32_t i = 0; i < 4; ++i) {
+        d.cell_vertices.insert(d.cell_vertices.end(), {i, (i + 1) % 4, 4, kNone32});
+        d.cell_neighbours.insert(d.cell_neighbours.end(), {(i + 1) % 4, (i + 3) % 4, kNone32, kNone32});
+        d.inner_matrices.insert(d.inner_matrices.end(), {0, 0, 0, -1, 0, 0, 0, 1, 0, 0, 0, 0});
+    }
+    hand_built::finish(d);
+    const Built b = load(d);
+    const float p[3] = {1.0f, 0.25f, 0.0f};  // in triangle 0 (corners 0, 1 and the centre)
+    const Location loc = b.store->locate(p, 2);
+    REQUIRE(loc.status == TP_OK);
+    REQUIRE(loc.fallback);
+    REQUIRE(loc.cell == 0);
+    std::map<uint32_t, double> m = weight_map(loc);
+    REQUIRE(m[0] == Approx(0.375).margin(1e-6));
+    REQUIRE(m[1] == Approx(0.375).margin(1e-6));
+    REQUIRE(m[4] == Approx(0.25).margin(1e-6));
+    const float beyond[3] = {1.0f, -0.5f, 0.0f};
+    REQUIRE(b.store->locate(beyond, 1).status == TP_ERROR_OUTSIDE);
+}
