@@ -26,7 +26,7 @@ sanitize: deps
 	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
 	cmake --build $(BUILD)-asan -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  ctest --test-dir $(BUILD)-asan --output-on-failure -j $(JOBS) -L sanitize
+	  ctest --test-dir $(BUILD)-asan --output-on-failure -j $(JOBS) -L 'unit|c'
 
 fuzz-build: deps
 	cmake -S . -B $(BUILD)-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETPROBE_FUZZ=ON \

@@ -63,6 +63,14 @@ int ProgressBar::callback(void* user, float fraction, const char* stage) {
     auto* bar = static_cast<ProgressBar*>(user);
     const int percent = static_cast<int>(std::lround(std::fmin(std::fmax(fraction, 0.0f), 1.0f) * 100.0f));
     if (percent == bar->last_percent) return 0;
+    // On a terminal the bar redraws in place; in a log (CI, pipes) only every 25% gets a line.
+    static const bool interactive = isatty(fileno(stderr));
+    if (!interactive) {
+        if (bar->last_percent >= 0 && percent / 25 == bar->last_percent / 25) return 0;
+        bar->last_percent = percent;
+        std::fprintf(stderr, "%-6s %3d%% %s\n", bar->label.c_str(), percent, stage ? stage : "");
+        return 0;
+    }
     bar->last_percent = percent;
     const int filled = percent * 30 / 100;
     std::fprintf(stderr, "\r%-6s [%.*s%*s] %3d%% %-24.24s", bar->label.c_str(), filled,
@@ -72,7 +80,7 @@ int ProgressBar::callback(void* user, float fraction, const char* stage) {
 }
 
 void ProgressBar::finish() {
-    if (last_percent >= 0) std::fputc('\n', stderr);
+    if (last_percent >= 0 && isatty(fileno(stderr))) std::fputc('\n', stderr);
     last_percent = -1;
 }
 
