@@ -60,7 +60,13 @@ inline void finish(StoreData& d) {
 // onto the simplex's affine hull: b_k = M[k].xyz . p + M[k].w for k < dim.
 inline void append_inner_matrix(StoreData& d, const std::array<uint32_t, 4>& v, uint32_t dim) {
     std::array<float, 12> m{};
-    if (dim > 0) {
+    if (dim == 1) {
+        // b0 = (p - v1) . e / |e|^2 with e = v0 - v1 (closed form: cheap for very long lines).
+        const Vec e = position(d, v[0]) - position(d, v[1]);
+        const Vec row = e / e.squaredNorm();
+        for (int j = 0; j < 3; ++j) m[j] = float(row[j]);
+        m[3] = float(-row.dot(position(d, v[1])));
+    } else if (dim > 0) {
         const Vec last = position(d, v[dim]);
         Eigen::MatrixXd edges(3, dim);
         for (uint32_t k = 0; k < dim; ++k) edges.col(k) = position(d, v[k]) - last;
