@@ -3,6 +3,7 @@
 #include <cstring>
 
 #if defined(__x86_64__)
+#include <cpuid.h>
 #include <immintrin.h>
 #endif
 
@@ -128,9 +129,14 @@ __attribute__((target("avx2,f16c,fma"))) void blend_sh_halves_f16c(const uint16_
     out[26] = last[2];
 }
 
+// F16C is read from CPUID leaf 1 (ECX bit 29) because clang 14's __builtin_cpu_supports does not
+// know the "f16c" name.
 bool cpu_has_f16c_avx2_fma() {
     __builtin_cpu_init();
-    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("f16c");
+    unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+    if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
+    const bool f16c = (ecx >> 29) & 1u;
+    return f16c && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
 }
 
 }  // namespace
