@@ -130,13 +130,17 @@ inline void inner_barycentrics(const StoreData& d, const Frame& f, uint32_t c, c
 
 // f(t) of outer cell c: p lies in the plane (3D) or on the line across the plane (2D) of the moved
 // facet; positive at t = 0 exactly when p is beyond the facet.
+// (Plain arithmetic: the root search calls it thousands of times, and unoptimised Eigen in the
+// sanitizer build would dominate the test time.)
 inline double moved_facet_equation(const Vec* P, const Vec* N, uint32_t dim, const Frame& f, const Vec& p, double t) {
-    if (dim == 3) {
-        const Vec a = P[0] + t * N[0], b = P[1] + t * N[1], c = P[2] + t * N[2];
-        return (b - a).cross(c - a).dot(p - a);
+    double a[3], u[3], v[3], w[3];
+    for (int i = 0; i < 3; ++i) {
+        a[i] = P[0][i] + t * N[0][i];
+        u[i] = P[1][i] + t * N[1][i] - a[i];
+        v[i] = dim == 3 ? P[2][i] + t * N[2][i] - a[i] : p[i] - a[i];
+        w[i] = dim == 3 ? p[i] - a[i] : f.n[i];
     }
-    const Vec a = P[0] + t * N[0], b = P[1] + t * N[1];
-    return (b - a).cross(p - a).dot(f.n);
+    return (u[1] * v[2] - u[2] * v[1]) * w[0] + (u[2] * v[0] - u[0] * v[2]) * w[1] + (u[0] * v[1] - u[1] * v[0]) * w[2];
 }
 
 // Weights of p in the moved facet at t (triangle projected on its plane, segment on its line).
@@ -158,7 +162,7 @@ inline void moved_facet_weights(const Vec* P, const Vec* N, uint32_t dim, const 
 
 // Roots of f in [0, t_max] by dense sampling (denser near 0) and bisection of each sign change.
 template <class F>
-std::vector<double> sampled_roots(const F& f, double t_max, int samples = 400) {
+std::vector<double> sampled_roots(const F& f, double t_max, int samples = 120) {
     std::vector<double> roots;
     double t0 = 0, f0 = f(0.0);
     if (f0 == 0) roots.push_back(0);
