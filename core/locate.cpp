@@ -343,9 +343,11 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
     for (uint32_t& r : recent) r = kNoCell;
     uint32_t steps = 0;
     for (; steps <= s.step_cap; ++steps) {
-        bool cycling = false;
-        for (uint32_t r : recent) cycling |= r == cell;
-        if (cycling) break;
+        if (steps > 0) {
+            bool cycling = false;
+            for (uint32_t r : recent) cycling |= r == cell;
+            if (cycling) break;
+        }
         recent[steps % kRecentCells] = cell;
         Location loc;
         loc.cell = int32_t(cell);
@@ -361,11 +363,13 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
                 sum += b;
             }
             w[d] = 1.0f - sum;
-            if (!all_finite(w, int(d + 1))) break;
-            if (minimum(w, int(d + 1)) >= -kInsideToleranceD) {
+            bool inside = true;
+            for (uint32_t k = 0; k <= d; ++k) inside &= w[k] >= -kInsideToleranceD;  // false for NaN
+            if (inside) {
                 set_weights(cells, cell, d + 1, w, loc);
                 return loc;
             }
+            if (!all_finite(w, int(d + 1))) break;
             // Beyond a hull facet (a store without outer cells): outside, by convexity of the hull.
             for (uint32_t k = 0; k <= d; ++k) {
                 if (w[k] < -kInsideToleranceD && cells.neighbour(cell, k) == kNoCell) {
