@@ -13,7 +13,8 @@
 //   cells [inner_cell_count, cell_count) are outer cells with d probes in slots 0..d-1 and
 //   kOuter in slot d. Unused slots hold kNone. Dimension 0 has exactly one inner cell {0}.
 // - neighbour k is the cell across the facet opposite vertex slot k (k <= d), kNone where there
-//   is none (only in stores built without extrapolation); slots above d are kNone. An outer
+//   is none (the hull of a store built without extrapolation, and the far side of a line's end
+//   cell, which holds every point beyond that end); slots above d are kNone. An outer
 //   cell's neighbour d is the inner cell it rests on; its neighbours below d are outer cells.
 // - inner matrix (12 floats, row-major 3x4, per inner cell): barycentric b_k = M[k].xyz . p + M[k].w
 //   for k < d, b_d = 1 - sum; rows >= d are zero.
