@@ -1,6 +1,8 @@
 // Version, thread-local errors and status names.
 #include "boundary.h"
 
+#include <cstring>
+
 namespace tetprobe {
 
 namespace {
@@ -27,7 +29,10 @@ TP_API uint32_t tp_version(void) { return TP_VERSION; }
 TP_API const char* tp_last_error(void) { return tetprobe::t_last_error.c_str(); }
 
 TP_API const char* tp_status_name(tp_status status) {
-    switch (status) {
+    // C callers may pass any int; reading it as the enum would be undefined in C++ when out of range.
+    int value;
+    std::memcpy(&value, &status, sizeof value);
+    switch (value) {
         case TP_OK: return "TP_OK";
         case TP_ERROR_INVALID_ARGUMENT: return "TP_ERROR_INVALID_ARGUMENT";
         case TP_ERROR_OUT_OF_MEMORY: return "TP_ERROR_OUT_OF_MEMORY";

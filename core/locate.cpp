@@ -281,6 +281,7 @@ Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
         double t = 0;
         uint32_t used;
         if (cell < s.inner_cell_count) {
+            if (!s.zero_volume.empty() && s.zero_volume[cell]) continue;  // holds no point
             used = d + 1;
             Vec3 v[4];
             for (uint32_t k = 0; k <= d; ++k) v[k] = probe_position(s, cells.vertex(cell, k));
@@ -324,7 +325,7 @@ Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
 }
 
 template <class Index>
-Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
+Location walk_cells(const Store::Impl& s, const float world[3], int32_t hint) {
     const CellView<Index> cells(s);
     double local[3];
     float local_f[3];
@@ -365,7 +366,8 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
             w[d] = 1.0f - sum;
             bool inside = true;
             for (uint32_t k = 0; k <= d; ++k) inside &= w[k] >= -kInsideToleranceD;  // false for NaN
-            if (inside) {
+            const bool flat = !s.zero_volume.empty() && s.zero_volume[cell];
+            if (inside && !flat) {
                 set_weights(cells, cell, d + 1, w, loc);
                 return loc;
             }
@@ -377,8 +379,10 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
                     return loc;
                 }
             }
-            slot = exit_slot(cells, cell, w, d + 1, previous, true);
+            // A zero-volume cell ignores the direction across its plane, so it must hand p on.
+            slot = exit_slot(cells, cell, w, d + 1, previous, !flat);
             if (slot < 0) {
+                if (flat) break;
                 set_weights(cells, cell, d + 1, w, loc);
                 return loc;
             }
@@ -418,7 +422,49 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
     return loc;
 }
 
+// A query at a probe's own stored position answers that probe alone, whatever cell holds it: a
+// zero-volume cell (TetGen keeps some where rounding makes four probes coplanar) has no meaningful
+// barycentrics there, and exactness at probes must not depend on which cell the walk ends in.
+template <class Index>
+Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
+    Location loc = walk_cells<Index>(s, world, hint);
+    if (loc.status != TP_OK || loc.kind != TP_CELL_INNER) return loc;
+    float local[3];
+    for (int k = 0; k < 3; ++k) local[k] = float(double(world[k]) - s.origin[k]);
+    for (uint32_t k = 0; k <= s.dimension; ++k) {
+        const uint32_t probe = loc.probes[k];
+        const float* v = s.positions + 3 * size_t(probe);
+        if (v[0] == local[0] && v[1] == local[1] && v[2] == local[2]) {
+            for (uint32_t j = 0; j < 4; ++j) loc.weights[j] = j == k ? 1.0f : 0.0f;
+            break;
+        }
+    }
+    return loc;
+}
+
+template <class Index>
+void mark_zero_volume_typed(Store::Impl& s) {
+    const CellView<Index> cells(s);
+    s.zero_volume.assign(s.inner_cell_count, 0);
+    for (uint32_t cell = 0; cell < s.inner_cell_count; ++cell) {
+        const Vec3 last = probe_position(s, cells.vertex(cell, 3));
+        const Vec3 e0 = probe_position(s, cells.vertex(cell, 0)) - last;
+        const Vec3 e1 = probe_position(s, cells.vertex(cell, 1)) - last;
+        const Vec3 e2 = probe_position(s, cells.vertex(cell, 2)) - last;
+        const double scale = std::sqrt(dot(e0, e0) * dot(e1, e1) * dot(e2, e2));
+        s.zero_volume[cell] = std::fabs(dot(e0, cross(e1, e2))) <= 1e-12 * scale;
+    }
+}
+
 }  // namespace
+
+void mark_zero_volume_cells(Store::Impl& store) {
+    if (store.dimension != 3) return;
+    if (store.index32)
+        mark_zero_volume_typed<uint32_t>(store);
+    else
+        mark_zero_volume_typed<uint16_t>(store);
+}
 
 LocateFunction locate_function(bool index32) { return index32 ? &walk<uint32_t> : &walk<uint16_t>; }
 

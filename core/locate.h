@@ -12,6 +12,10 @@ constexpr float kInsideTolerance = 1e-5f;
 // The walk for the given index width (chosen once, when a store is loaded).
 LocateFunction locate_function(bool index32);
 
+// Finds the inner cells of zero volume (by the builder's own test, in double on the stored
+// positions) and records them in store.zero_volume. Called once when a store is loaded.
+void mark_zero_volume_cells(Store::Impl& store);
+
 // The cell of a local position decided over all cells in double precision: the cell whose smallest
 // barycentric coordinate (or, for outer cells, moved-triangle weight) is largest. O(cells); the
 // walk's fallback, and a referee for tests. Never allocates.

@@ -67,6 +67,7 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     s.outer_matrices = reinterpret_cast<const float*>(section(kSectionOuterMatrices));
     s.grid_cells = section(kSectionGrid);
     s.locate = locate_function(s.index32);
+    mark_zero_volume_cells(s);
     return store;
 }
 

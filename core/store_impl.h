@@ -2,6 +2,8 @@
 // shared by loading (store.cpp), the walk (locate.cpp) and the blend (interpolate.cpp).
 #pragma once
 
+#include <vector>
+
 #include "core/store.h"
 
 #include <cstdint>
@@ -42,6 +44,9 @@ struct Store::Impl {
     const void* grid_cells = nullptr;        // grid[0]*grid[1]*grid[2] indices
 
     LocateFunction locate = nullptr;         // the walk for this index width
+    // Per inner cell of a 3D store, 1 where the cell has zero volume (found once at load): the walk
+    // passes through such cells but never answers with them.
+    std::vector<uint8_t> zero_volume;
 };
 
 }  // namespace tetprobe
