@@ -16,6 +16,7 @@ struct BakeSettings {
     uint64_t seed = 0;
     uint32_t threads = 0;    // 0 = all cores
     bool culling = true;     // false: every mesh occludes every light (test aid)
+    bool emitter_sampling = true;  // false: emission is found only by rays that hit it (test and benchmark aid)
     tp_progress_fn progress = nullptr;
     void* progress_user = nullptr;
 };
@@ -28,7 +29,10 @@ struct BakeStats {
 // Bakes the probes at `positions` (3 floats each, world units) and returns 27 floats per probe.
 // Delta lights in the plan's direct set are projected analytically with one shadow ray; the sphere
 // of directions is sampled (stratified, deterministic per seed, probe and ray) for sky, emission
-// and bounces, which are path traced with next-event estimation of the lights. The projection
+// and bounces, which are path traced with next-event estimation of the lights. Emissive triangles
+// are also sampled directly, from the probe and from each reflection (points drawn in proportion
+// to emitted power, with a shadow ray), and combined with the rays that hit them by multiple
+// importance sampling, so a small bright emitter converges with few rays. The projection
 // solves the least-squares fit of the samples (their Gram matrix), so radiance that is itself in
 // the L2 span, such as a uniform or SH sky, comes out exact. Results do not depend on the thread
 // count. A progress callback that returns non-zero throws Error(TP_ERROR_CANCELLED).

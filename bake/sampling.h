@@ -50,4 +50,13 @@ inline void cosine_direction(const double n[3], double u1, double u2, double out
     for (int k = 0; k < 3; ++k) out[k] = x * t[k] + y * s[k] + z * n[k];
 }
 
+// Barycentric weights of a uniformly distributed point on a triangle from two uniforms (the
+// square-root warp: u1 picks the distance from the first corner, u2 the place across).
+inline void uniform_triangle_weights(double u1, double u2, double weights[3]) {
+    double s = std::sqrt(u1);
+    weights[0] = 1.0 - s;
+    weights[1] = s * (1.0 - u2);
+    weights[2] = s * u2;
+}
+
 }  // namespace tetprobe
