@@ -1,6 +1,7 @@
 // The bake benchmark: rays per second of the bake next to raw Embree rtcIntersect1 rays per second
 // on the same scene, then "what accuracy costs in time": SH error against a high-sample reference
-// for several rays-per-probe and bounce settings, with bake time. Prints markdown tables.
+// for several rays-per-probe and bounce settings, with bake time, and with emitter sampling off
+// and on in scenes with emissive surfaces. Prints markdown tables.
 //
 // Scenes: samples/scenes/two_rooms.json and cornell_box.json relative to the working directory (the
 // repository root under `make bench`), or those given with --scene PATH (repeatable). --quick
@@ -114,32 +115,47 @@ void bench_scene(const std::string& path, bool quick) {
                 (unsigned long long)stats.rays_cast, stats.seconds, bake_rate / 1e6, raw_rate / 1e6,
                 raw_rate > 0 ? bake_rate / raw_rate : 0.0);
 
-    // What accuracy costs in time: every setting against one high-sample, many-bounce reference.
+    // What accuracy costs in time: every setting against one high-sample, many-bounce reference
+    // (error: noise and the light of the bounces left out), and against a high-sample reference of
+    // the same bounces (noise alone).
     const uint32_t reference_rays = quick ? 1024 : 8192, reference_bounces = 6;
     settings.rays = reference_rays;
     settings.bounces = reference_bounces;
     settings.seed = 12345;  // independent of the settings under test
     const Clock::time_point reference_start = Clock::now();
     const std::vector<float> reference = bake_lighting(scene, probes, settings);
-    std::printf("Reference: %u rays per probe, %u bounces, %.2f s. Errors are relative RMS over all probes.\n\n",
-                reference_rays, reference_bounces, seconds_since(reference_start));
-    std::printf("| rays per probe | bounces | bake time | ms per probe | SH error | irradiance error |\n");
-    std::printf("| ---: | ---: | ---: | ---: | ---: | ---: |\n");
     const std::vector<uint32_t> ray_counts = quick ? std::vector<uint32_t>{32, 128} : std::vector<uint32_t>{32, 128, 512, 2048};
     const std::vector<uint32_t> bounce_counts = quick ? std::vector<uint32_t>{0, 2} : std::vector<uint32_t>{0, 1, 2, 4};
+    std::vector<std::vector<float>> same_bounce_references;
+    for (uint32_t bounces : bounce_counts) {
+        settings.bounces = bounces;
+        same_bounce_references.push_back(bake_lighting(scene, probes, settings));
+    }
+    // Emitter sampling only matters with emissive surfaces: then each setting is also run without
+    // it (emission found only by rays that hit it), to show what it saves.
+    const bool emissive = !plan.emissive_meshes.empty();
+    std::printf("References: %u rays per probe, %u bounces (and each bounce count of the table), %.2f s. Errors are "
+                "relative RMS over all probes; noise is the SH error against the reference of the same bounces.\n\n",
+                reference_rays, reference_bounces, seconds_since(reference_start));
+    std::printf("| rays per probe | bounces | emitter sampling | bake time | ms per probe | SH error | irradiance error | SH noise |\n");
+    std::printf("| ---: | ---: | :---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (uint32_t rays : ray_counts)
-        for (uint32_t bounces : bounce_counts) {
-            settings.rays = rays;
-            settings.bounces = bounces;
-            settings.seed = 7;
-            const Clock::time_point start = Clock::now();
-            const std::vector<float> sh = bake_lighting(scene, probes, settings);
-            const double elapsed = seconds_since(start);
-            double sh_error, irradiance_error;
-            errors(sh, reference, &sh_error, &irradiance_error);
-            std::printf("| %u | %u | %.3f s | %.3f | %.4f | %.4f |\n", rays, bounces, elapsed,
-                        1e3 * elapsed / double(count), sh_error, irradiance_error);
-        }
+        for (size_t b = 0; b < bounce_counts.size(); ++b)
+            for (bool sampled : emissive ? std::vector<bool>{false, true} : std::vector<bool>{true}) {
+                settings.rays = rays;
+                settings.bounces = bounce_counts[b];
+                settings.seed = 7;
+                settings.emitter_sampling = sampled;
+                const Clock::time_point start = Clock::now();
+                const std::vector<float> sh = bake_lighting(scene, probes, settings);
+                const double elapsed = seconds_since(start);
+                double sh_error, irradiance_error, noise, unused;
+                errors(sh, reference, &sh_error, &irradiance_error);
+                errors(sh, same_bounce_references[b], &noise, &unused);
+                std::printf("| %u | %u | %s | %.3f s | %.3f | %.4f | %.4f | %.4f |\n", rays, bounce_counts[b],
+                            !emissive ? "-" : sampled ? "on" : "off", elapsed, 1e3 * elapsed / double(count), sh_error,
+                            irradiance_error, noise);
+            }
 }
 
 }  // namespace
