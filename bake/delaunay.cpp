@@ -1,10 +1,13 @@
 #include "bake/delaunay.h"
 
+#include "bake/tetgen_guard.h"
 #include "core/error.h"
 
 #include <tetgen.h>
 
 #include <cmath>
+#include <memory>
+#include <new>
 #include <mutex>
 #include <string>
 
@@ -31,6 +34,40 @@ int slot_not_shared(const int* cell, const int* other) {
     return found;
 }
 
+struct TetgenCall {
+    const std::vector<Eigen::Vector3d>* points = nullptr;
+    int rotation = 0;    // coordinates cycled this many times (an exact, orientation-keeping rotation)
+    tetgenio* in = nullptr;
+    tetgenio* out = nullptr;
+    int error_code = 0;  // TetGen's int throw, if any
+    bool out_of_memory = false;
+};
+
+// Allocates TetGen's input and output and runs it (inside the crash guard, so that what a crashed
+// attempt allocated is all in one place).
+void run_tetgen(void* context) {
+    auto* call = static_cast<TetgenCall*>(context);
+    try {
+        const std::vector<Eigen::Vector3d>& points = *call->points;
+        call->in = new tetgenio;
+        call->out = new tetgenio;
+        call->in->firstnumber = 0;
+        call->in->numberofpoints = int(points.size());
+        call->in->pointlist = new REAL[points.size() * 3];
+        for (size_t i = 0; i < points.size(); ++i) {
+            for (int a = 0; a < 3; ++a) call->in->pointlist[i * 3 + a] = points[i][(a + call->rotation) % 3];
+        }
+        // Q quiet, n neighbours, z zero-based, J keep every input point's number.
+        tetrahedralize(const_cast<char*>("QnzJ"), call->in, call->out);
+    } catch (int code) {
+        call->error_code = code == 0 ? -1 : code;
+    } catch (const std::bad_alloc&) {
+        call->out_of_memory = true;  // nothing may unwind through the guard's handlers
+    } catch (...) {
+        call->error_code = -2;
+    }
+}
+
 }  // namespace
 
 SimplexMesh delaunay_tetrahedralize(const std::vector<Eigen::Vector3d>& points) {
@@ -41,23 +78,26 @@ SimplexMesh delaunay_tetrahedralize(const std::vector<Eigen::Vector3d>& points) 
     }
     if (points.size() > size_t(INT32_MAX / 4)) throw Error(TP_ERROR_INVALID_ARGUMENT, "too many points for TetGen");
 
-    tetgenio in, out;
-    in.firstnumber = 0;
-    in.numberofpoints = int(points.size());
-    in.pointlist = new REAL[points.size() * 3];
-    for (size_t i = 0; i < points.size(); ++i) {
-        for (int a = 0; a < 3; ++a) in.pointlist[i * 3 + a] = points[i][a];
-    }
-
-    {
-        // Q quiet, n neighbours, z zero-based, J keep every input point's number.
+    // TetGen sometimes dies on a set it handles fine with its axes cycled (an exact rotation that
+    // keeps every tetrahedron's orientation), so a crash is contained and retried that way.
+    TetgenCall call;
+    bool survived = false;
+    call.points = &points;
+    for (int rotation = 0; rotation < 3 && !survived; ++rotation) {
+        call.rotation = rotation;
         std::lock_guard<std::mutex> lock(tetgen_mutex());
-        try {
-            tetrahedralize(const_cast<char*>("QnzJ"), &in, &out);
-        } catch (int code) {
-            throw Error(TP_ERROR_TETGEN, "TetGen failed with code " + std::to_string(code));
-        }
+        survived = call_guarded_against_crashes(&run_tetgen, &call);
+        if (!survived) call.in = call.out = nullptr;  // leaked on purpose: TetGen died holding them
     }
+    if (!survived) {
+        throw Error(TP_ERROR_TETGEN, "TetGen crashed on this probe set (contained; tried 3 orientations)");
+    }
+    std::unique_ptr<tetgenio> in_owner(call.in), out_owner(call.out);
+    if (call.out_of_memory) throw std::bad_alloc();
+    if (call.error_code != 0) {
+        throw Error(TP_ERROR_TETGEN, "TetGen failed with code " + std::to_string(call.error_code));
+    }
+    const tetgenio& out = *call.out;
 
     if (out.numberoftetrahedra <= 0 || !out.tetrahedronlist || !out.neighborlist || out.numberofcorners < 4) {
         throw Error(TP_ERROR_TETGEN, "TetGen returned no tetrahedra");

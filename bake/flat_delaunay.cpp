@@ -24,7 +24,22 @@ SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
     const uint32_t apex = uint32_t(uv.size());
     points.emplace_back(centroid.x(), centroid.y(), height);
 
-    const SimplexMesh tets = delaunay_tetrahedralize(points);
+    // TetGen 1.5.0 sometimes leaves out a probe that sits exactly on a straight stretch of the
+    // boundary (seen with four collinear hull probes); another apex changes its insertion order and
+    // keeps it. The builder merges a probe left out by every attempt into its nearest neighbour.
+    const Eigen::Vector3d apexes[] = {{centroid.x(), centroid.y(), height},
+                                      {lo.x() + 0.31 * (hi.x() - lo.x()), lo.y() + 0.67 * (hi.y() - lo.y()), 2.7 * height},
+                                      {lo.x() + 0.83 * (hi.x() - lo.x()), lo.y() + 0.21 * (hi.y() - lo.y()), 0.6 * height}};
+    SimplexMesh tets;
+    for (const Eigen::Vector3d& apex_position : apexes) {
+        points[apex] = apex_position;
+        tets = delaunay_tetrahedralize(points);
+        std::vector<char> used(points.size(), 0);
+        for (const CellSlots& v : tets.vertices)
+            for (uint32_t index : v)
+                if (index < used.size()) used[index] = 1;
+        if (std::all_of(used.begin(), used.end(), [](char u) { return u != 0; })) break;
+    }
 
     // Tetrahedron t becomes triangle t: drop the apex slot and keep the other three in order, with
     // their neighbours (the neighbour across the facet opposite a base vertex is the tetrahedron over

@@ -12,6 +12,8 @@ for target in fuzz_load fuzz_build; do
       for m in 0 1; do printf "\\x0$m" | cat - "$f" > "$corpus/seed-$m-$(basename "$f")"; done
     done
   fi
+  # Inputs that once failed stay in the corpus, so every run replays them first.
+  if [ -d "$root/tests/fuzz/seeds/$target" ]; then cp "$root/tests/fuzz/seeds/$target"/* "$corpus/"; fi
   echo "fuzzing $target for ${seconds}s"
   if "$build/tests/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
        -artifact_prefix="$build/crash-$target-" "$corpus" > "$build/$target.log" 2>&1; then

@@ -456,3 +456,35 @@ TEST_CASE("builder: slivers on the hull are peeled and their probes keep a cell"
     }
     REQUIRE(std::count(used.begin(), used.end(), 1) == int(p.size()));
 }
+
+TEST_CASE("builder: a set that crashes TetGen 1.5.0 is contained and retried", "[builder]") {
+    // Found by fuzz_build: centred and rounded to float, these seven points make Debian's TetGen
+    // 1.5.0 fail an assertion (abort). With its axes cycled TetGen handles them; the build must
+    // succeed that way, and the process must live either way.
+    const std::vector<float> positions = {0, 0, 3, 0, 0, 0, 0, 0, -1, -1, -1, 0, 1, 0, 0, 1, 1, 2, 2, 3, -3};
+    const StoreData d = build(positions, 0);
+    REQUIRE(d.dimension == 3);
+    REQUIRE(d.probe_count() == 7);
+    const std::vector<uint8_t> blob = tetprobe::write_store_blob(d);
+    const auto store = tetprobe::Store::load(blob.data(), blob.size());
+    for (uint32_t i = 0; i < 7; ++i) {
+        const tetprobe::Location loc = store->locate(&positions[3 * i], -1);
+        REQUIRE(loc.status == TP_OK);
+        float own = 0;
+        for (int k = 0; k < 4; ++k)
+            if (loc.probes[k] == d.input_remap[i]) own += loc.weights[k];
+        CHECK(own == Approx(1).margin(1e-5));
+    }
+}
+
+TEST_CASE("builder: a flat set with collinear boundary probes keeps every probe", "[builder]") {
+    // Found by fuzz_build: four probes on one straight stretch of the boundary. TetGen 1.5.0 left one
+    // out of the flat triangulation for one apex (with clang's rounding), which merged it into a
+    // neighbour 1.1 away; another apex keeps it.
+    const std::vector<float> positions = {1000.f, 1000.f, 1000.f,  1000.37f, 1000.f, 1000.f,  1000.f, 1000.f, 999.63f,
+                                          1001.48f, 1000.f, 1000.37f, 1000.f, 1000.f, 1000.37f, 1001.11f, 1000.f, 1000.f,
+                                          1000.f, 1000.f, 1001.48f};
+    const StoreData d = build(positions, 0);
+    REQUIRE(d.dimension == 2);
+    REQUIRE(d.probe_count() == 7);
+}
