@@ -4,6 +4,7 @@
 
 #include "bake/effects_plan.h"
 #include "bake/scene.h"
+#include "core/option_defaults.h"
 
 #include <cstdint>
 #include <vector>
@@ -11,8 +12,8 @@
 namespace tetprobe {
 
 struct BakeSettings {
-    uint32_t rays = 256;     // sampled directions per probe
-    uint32_t bounces = 2;    // surface reflections between an emitter and the probe
+    uint32_t rays = kDefaultBakeRays;        // sampled directions per probe
+    uint32_t bounces = kDefaultBakeBounces;  // surface reflections between an emitter and the probe
     uint64_t seed = 0;
     uint32_t threads = 0;    // 0 = all cores
     bool culling = true;     // false: every mesh occludes every light (test aid)

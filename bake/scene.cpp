@@ -59,30 +59,6 @@ void validate_material(const Material& material, const std::string& where) {
     }
 }
 
-tp_material default_c_material() {
-    tp_material m{};
-    m.struct_size = sizeof(tp_material);
-    const Material defaults;
-    std::copy(defaults.albedo.begin(), defaults.albedo.end(), m.albedo);
-    m.two_sided = 0;
-    return m;
-}
-
-tp_light default_c_light() {
-    tp_light light{};
-    light.struct_size = sizeof(tp_light);
-    light.type = TP_LIGHT_POINT;
-    light.mode = TP_LIGHT_MODE_BAKED;
-    light.shadows = 1;
-    light.color[0] = light.color[1] = light.color[2] = 1.0f;
-    light.intensity = 1.0f;
-    light.direction[1] = -1.0f;
-    light.range = INFINITY;
-    light.inner_angle = 30.0f;
-    light.outer_angle = 45.0f;
-    return light;
-}
-
 Material material_from_c(const tp_material& material, const std::string& where) {
     if (material.struct_size < sizeof(tp_material))
         throw Error(TP_ERROR_INVALID_ARGUMENT, where + ": struct_size is not set (call tp_material_init)");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "capi/tetprobe.h"
+#include "core/option_defaults.h"
 
 #include <array>
 #include <cstdint>
@@ -13,7 +14,7 @@
 namespace tetprobe {
 
 struct Material {
-    std::array<float, 3> albedo{{0.8f, 0.8f, 0.8f}};  // Lambertian reflectance in [0, 1]
+    std::array<float, 3> albedo{{kDefaultAlbedo, kDefaultAlbedo, kDefaultAlbedo}};  // Lambertian reflectance in [0, 1]
     std::array<float, 3> emission{{0.0f, 0.0f, 0.0f}};  // emitted radiance, >= 0
     bool two_sided = false;                              // one-sided faces are black from behind
 
@@ -95,10 +96,9 @@ private:
 // Checks a material, throwing Error(TP_ERROR_SCENE) naming `where` when it is invalid.
 void validate_material(const Material& material, const std::string& where);
 
-// The defaults of tp_material_init and tp_light_init: grey one-sided material; white baked
-// shadowing point light of intensity 1, unlimited range, spot cones 30 and 45 degrees.
-tp_material default_c_material();
-tp_light default_c_light();
+// The defaults of tp_material_init and tp_light_init (core/option_defaults.h).
+inline tp_material default_c_material() { return default_material(); }
+inline tp_light default_c_light() { return default_light(); }
 
 // Converts a C material (struct_size must be set) to a Material.
 Material material_from_c(const tp_material& material, const std::string& where);

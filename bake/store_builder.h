@@ -4,6 +4,7 @@
 #pragma once
 
 #include "capi/tetprobe.h"
+#include "core/option_defaults.h"
 #include "core/store_data.h"
 
 #include <cstddef>
@@ -12,8 +13,8 @@ namespace tetprobe {
 
 struct BuildSettings {
     uint32_t flags = 0;              // TP_BUILD_*
-    double merge_tolerance = 1e-6;   // fraction of the bounding-box diagonal
-    double flat_tolerance = 1e-4;    // fraction of the bounding-box diagonal
+    double merge_tolerance = kDefaultMergeTolerance;  // fraction of the bounding-box diagonal
+    double flat_tolerance = kDefaultFlatTolerance;    // fraction of the bounding-box diagonal
     tp_progress_fn progress = nullptr;
     void* progress_user = nullptr;
 };

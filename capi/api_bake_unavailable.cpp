@@ -1,5 +1,5 @@
 // The run-time library builds no stores and has no scenes and no bake: these entry points exist so that the two libraries
-// export the same symbols, and say why they fail. Initializers of plain structs still work.
+// export the same symbols, and say why they fail. The struct initialisers are in api_defaults.cpp.
 #include "boundary.h"
 
 #include <cmath>
@@ -19,50 +19,11 @@ tp_status unavailable(const char* function) {
 
 extern "C" {
 
-TP_API tp_status tp_build_options_init(tp_build_options* options) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(options);
-    std::memset(options, 0, sizeof *options);
-    options->struct_size = sizeof(tp_build_options);
-    options->merge_tolerance = 1e-6;
-    options->flat_tolerance = 1e-4;
-    return TP_OK;
-    TP_API_END
-}
-
 TP_API tp_status tp_store_build(const float*, size_t, const float*, size_t, size_t, const tp_build_options*,
                                 tp_store** out_store) {
     TP_API_BEGIN
     if (out_store) *out_store = nullptr;
     return unavailable("tp_store_build");
-    TP_API_END
-}
-
-TP_API tp_status tp_material_init(tp_material* material) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(material);
-    std::memset(material, 0, sizeof *material);
-    material->struct_size = sizeof(tp_material);
-    material->albedo[0] = material->albedo[1] = material->albedo[2] = 0.8f;
-    return TP_OK;
-    TP_API_END
-}
-
-TP_API tp_status tp_light_init(tp_light* light) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(light);
-    std::memset(light, 0, sizeof *light);
-    light->struct_size = sizeof(tp_light);
-    light->type = TP_LIGHT_POINT;
-    light->mode = TP_LIGHT_MODE_BAKED;
-    light->shadows = 1;
-    light->color[0] = light->color[1] = light->color[2] = 1.0f;
-    light->intensity = 1.0f;
-    light->direction[1] = -1.0f;
-    light->range = INFINITY;
-    light->inner_angle = 30.0f;
-    light->outer_angle = 45.0f;
-    return TP_OK;
     TP_API_END
 }
 
@@ -123,17 +84,6 @@ TP_API tp_status tp_scene_probes(const tp_scene*, const float** out_positions, s
 TP_API tp_status tp_scene_set_probes(tp_scene*, const float*, size_t) {
     TP_API_BEGIN
     return unavailable("tp_scene_set_probes");
-    TP_API_END
-}
-
-TP_API tp_status tp_bake_options_init(tp_bake_options* options) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(options);
-    std::memset(options, 0, sizeof *options);
-    options->struct_size = sizeof(tp_bake_options);
-    options->rays = 256;
-    options->bounces = 2;
-    return TP_OK;
     TP_API_END
 }
 

@@ -1,4 +1,4 @@
-// tp_build_options_init and tp_store_build: the C ABI of the store builder (bake-time library only).
+// tp_store_build: the C ABI of the store builder (bake-time library only).
 #include "bake/store_builder.h"
 #include "capi/boundary.h"
 #include "capi/store_handle.h"
@@ -49,21 +49,6 @@ void require_addressable(size_t count, size_t stride, size_t record_bytes, const
 }  // namespace
 
 extern "C" {
-
-TP_API tp_status tp_build_options_init(tp_build_options* options) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(options);
-    const tetprobe::BuildSettings defaults;
-    *options = tp_build_options{};
-    options->struct_size = uint32_t(sizeof(tp_build_options));
-    options->flags = defaults.flags;
-    options->merge_tolerance = defaults.merge_tolerance;
-    options->flat_tolerance = defaults.flat_tolerance;
-    options->progress = nullptr;
-    options->progress_user = nullptr;
-    return TP_OK;
-    TP_API_END
-}
 
 TP_API tp_status tp_store_build(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
                                 size_t probe_count, const tp_build_options* options, tp_store** out_store) {

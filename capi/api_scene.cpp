@@ -56,22 +56,6 @@ tp_status read_options(const tp_bake_options* options, tetprobe::BakeSettings& s
 
 extern "C" {
 
-TP_API tp_status tp_material_init(tp_material* material) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(material);
-    *material = tetprobe::default_c_material();
-    return TP_OK;
-    TP_API_END
-}
-
-TP_API tp_status tp_light_init(tp_light* light) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(light);
-    *light = tetprobe::default_c_light();
-    return TP_OK;
-    TP_API_END
-}
-
 TP_API tp_status tp_scene_create(tp_scene** out_scene) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(out_scene);
@@ -164,20 +148,6 @@ TP_API tp_status tp_scene_set_probes(tp_scene* scene, const float* positions, si
     TP_REQUIRE_NOT_NULL(scene);
     if (count > 0) TP_REQUIRE_NOT_NULL(positions);
     scene->scene.set_probes(positions, count);
-    return TP_OK;
-    TP_API_END
-}
-
-TP_API tp_status tp_bake_options_init(tp_bake_options* options) {
-    TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(options);
-    std::memset(options, 0, sizeof *options);
-    options->struct_size = sizeof(tp_bake_options);
-    const tetprobe::BakeSettings defaults;
-    options->rays = defaults.rays;
-    options->bounces = defaults.bounces;
-    options->seed = defaults.seed;
-    options->threads = defaults.threads;
     return TP_OK;
     TP_API_END
 }
