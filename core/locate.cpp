@@ -324,15 +324,11 @@ Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
     return loc;
 }
 
+// local: the position in the store's frame in double, local_f the same rounded to float (the
+// frame of the stored positions and matrices).
 template <class Index>
-Location walk_cells(const Store::Impl& s, const float world[3], int32_t hint) {
+Location walk_cells(const Store::Impl& s, const double local[3], const float local_f[3], int32_t hint) {
     const CellView<Index> cells(s);
-    double local[3];
-    float local_f[3];
-    for (int k = 0; k < 3; ++k) {
-        local[k] = double(world[k]) - s.origin[k];
-        local_f[k] = float(local[k]);
-    }
     const Vec3 p{local[0], local[1], local[2]};
     const uint32_t d = s.dimension;
     uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(local);
@@ -427,14 +423,18 @@ Location walk_cells(const Store::Impl& s, const float world[3], int32_t hint) {
 // barycentrics there, and exactness at probes must not depend on which cell the walk ends in.
 template <class Index>
 Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
-    Location loc = walk_cells<Index>(s, world, hint);
+    double local[3];
+    float local_f[3];
+    for (int k = 0; k < 3; ++k) {
+        local[k] = double(world[k]) - s.origin[k];
+        local_f[k] = float(local[k]);
+    }
+    Location loc = walk_cells<Index>(s, local, local_f, hint);
     if (loc.status != TP_OK || loc.kind != TP_CELL_INNER) return loc;
-    float local[3];
-    for (int k = 0; k < 3; ++k) local[k] = float(double(world[k]) - s.origin[k]);
     for (uint32_t k = 0; k <= s.dimension; ++k) {
         const uint32_t probe = loc.probes[k];
         const float* v = s.positions + 3 * size_t(probe);
-        if (v[0] == local[0] && v[1] == local[1] && v[2] == local[2]) {
+        if (v[0] == local_f[0] && v[1] == local_f[1] && v[2] == local_f[2]) {
             for (uint32_t j = 0; j < 4; ++j) loc.weights[j] = j == k ? 1.0f : 0.0f;
             break;
         }
