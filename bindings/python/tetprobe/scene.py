@@ -7,6 +7,7 @@ import os
 import numpy as np
 
 from . import _native
+from ._handle import NativeHandle
 from ._arrays import Progress, rows, vector
 from ._native import SH_FLOATS, check, lib
 from .errors import Error, Status
@@ -21,15 +22,18 @@ def _mode(mode):
         raise Error(Status.INVALID_ARGUMENT, "light mode must be 'baked' or 'realtime' (got %r)" % (mode,))
 
 
-class Scene:
+class Scene(NativeHandle):
     """Triangle meshes, lights, a sky and optionally probe positions, for the bake."""
+
+    _release = staticmethod(lib.tp_scene_release)
+    _noun = "scene"
 
     def __init__(self, _handle=None):
         if _handle is None:
             handle = ctypes.c_void_p()
             check(lib.tp_scene_create(ctypes.byref(handle)))
             _handle = handle.value
-        self._handle = ctypes.c_void_p(_handle)
+        self._adopt(_handle)
 
     @classmethod
     def load(cls, path):
@@ -37,25 +41,6 @@ class Scene:
         handle = ctypes.c_void_p()
         check(lib.tp_scene_load_file(os.fsencode(path), ctypes.byref(handle)))
         return cls(handle.value)
-
-    def close(self):
-        if getattr(self, "_handle", None):
-            lib.tp_scene_release(self._handle)
-            self._handle = None
-
-    def __del__(self):
-        self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def _live(self):
-        if not self._handle:
-            raise Error(Status.INVALID_ARGUMENT, "the scene is closed")
-        return self._handle
 
     # ---- content
 

@@ -6,18 +6,22 @@ import os
 import numpy as np
 
 from . import _native
+from ._handle import NativeHandle
 from ._arrays import Progress, rows
 from ._native import SH_FLOATS, check, lib
 from .errors import Error, Status
 
 
-class Store:
+class Store(NativeHandle):
     """An immutable probe store. Build it with Store.build or read it with Store.load."""
+
+    _release = staticmethod(lib.tp_store_release)
+    _noun = "store"
 
     def __init__(self, handle):
         if not handle:
             raise ValueError("Store() takes a native handle; use Store.build or Store.load")
-        self._handle = ctypes.c_void_p(handle)
+        self._adopt(handle)
 
     # ---- creation
 
@@ -63,28 +67,6 @@ class Store:
         else:
             check(lib.tp_store_load_file(os.fsencode(source), ctypes.byref(handle)))
         return cls(handle.value)
-
-    # ---- lifetime
-
-    def close(self):
-        """Releases the native store now (also done when the object is collected)."""
-        if getattr(self, "_handle", None):
-            lib.tp_store_release(self._handle)
-            self._handle = None
-
-    def __del__(self):
-        self.close()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-    def _live(self):
-        if not self._handle:
-            raise Error(Status.INVALID_ARGUMENT, "the store is closed")
-        return self._handle
 
     # ---- blob
 
