@@ -18,30 +18,23 @@ constexpr int kBandOfCoefficient[9] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
 
 }  // namespace
 
-void sh_basis(double x, double y, double z, double out[9]) {
-    out[0] = kY00;
-    out[1] = kY1 * y;
-    out[2] = kY1 * z;
-    out[3] = kY1 * x;
-    out[4] = kY2 * x * y;
-    out[5] = kY2 * y * z;
-    out[6] = kY20 * (3.0 * z * z - 1.0);
-    out[7] = kY2 * x * z;
-    out[8] = kY22 * (x * x - y * y);
-}
-
-void sh_basis(float x, float y, float z, float out[9]) {
-    const float c00 = float(kY00), c1 = float(kY1), c2 = float(kY2), c20 = float(kY20), c22 = float(kY22);
+// One body for both precisions: the constants are rounded to T once, then used as in the contract.
+template <class T>
+void sh_basis_in(T x, T y, T z, T out[9]) {
+    const T c00 = T(kY00), c1 = T(kY1), c2 = T(kY2), c20 = T(kY20), c22 = T(kY22);
     out[0] = c00;
     out[1] = c1 * y;
     out[2] = c1 * z;
     out[3] = c1 * x;
     out[4] = c2 * x * y;
     out[5] = c2 * y * z;
-    out[6] = c20 * (3.0f * z * z - 1.0f);
+    out[6] = c20 * (T(3) * z * z - T(1));
     out[7] = c2 * x * z;
     out[8] = c22 * (x * x - y * y);
 }
+
+void sh_basis(double x, double y, double z, double out[9]) { sh_basis_in(x, y, z, out); }
+void sh_basis(float x, float y, float z, float out[9]) { sh_basis_in(x, y, z, out); }
 
 double sh_cosine_lobe_band(int band) {
     switch (band) {
