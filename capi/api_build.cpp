@@ -1,6 +1,7 @@
 // tp_store_build: the C ABI of the store builder (bake-time library only).
 #include "bake/store_builder.h"
 #include "capi/boundary.h"
+#include "capi/strides.h"
 #include "capi/store_handle.h"
 #include "core/store.h"
 #include "core/store_data.h"
@@ -39,13 +40,6 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
     return settings;
 }
 
-// Checks that count records of record_bytes at stride bytes fit in the address space.
-void require_addressable(size_t count, size_t stride, size_t record_bytes, const char* what) {
-    if (count > 0 && (count - 1) > (SIZE_MAX - record_bytes) / stride) {
-        throw tetprobe::Error(TP_ERROR_INVALID_ARGUMENT, std::string(what) + ": count times stride overflows");
-    }
-}
-
 }  // namespace
 
 extern "C" {
@@ -57,18 +51,10 @@ TP_API tp_status tp_store_build(const float* positions, size_t position_stride, 
     *out_store = nullptr;
     if (probe_count == 0) return tetprobe::fail(TP_ERROR_DEGENERATE, "no probes: a store needs at least one probe");
     TP_REQUIRE_NOT_NULL(positions);
-    if (position_stride == 0) position_stride = kPositionBytes;
-    if (sh_stride == 0) sh_stride = kShBytes;
-    if (position_stride < kPositionBytes) {
-        return tetprobe::fail(TP_ERROR_INVALID_ARGUMENT, "position_stride " + std::to_string(position_stride) +
-                                                             " is below 12 bytes (use 0 for packed)");
-    }
-    if (sh && sh_stride < kShBytes) {
-        return tetprobe::fail(TP_ERROR_INVALID_ARGUMENT,
-                              "sh_stride " + std::to_string(sh_stride) + " is below 108 bytes (use 0 for packed)");
-    }
-    require_addressable(probe_count, position_stride, kPositionBytes, "positions");
-    if (sh) require_addressable(probe_count, sh_stride, kShBytes, "sh");
+    position_stride = tetprobe::resolve_stride(position_stride, kPositionBytes, "position_stride");
+    sh_stride = sh ? tetprobe::resolve_stride(sh_stride, kShBytes, "sh_stride") : kShBytes;
+    tetprobe::require_addressable(probe_count, position_stride, kPositionBytes, "positions");
+    if (sh) tetprobe::require_addressable(probe_count, sh_stride, kShBytes, "sh");
     const tetprobe::BuildSettings settings = read_build_options(options);
 
     const tetprobe::StoreData data =

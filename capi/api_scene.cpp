@@ -1,5 +1,6 @@
 // Scenes, the effects plan and the lighting bake (full library only).
 #include "boundary.h"
+#include "strides.h"
 
 #include "bake/effects_plan.h"
 #include "bake/lighting_bake.h"
@@ -20,8 +21,7 @@ namespace {
 
 tp_status read_positions(const float* positions, size_t stride, size_t count, std::vector<float>& out) {
     if (count > 0 && !positions) return fail(TP_ERROR_INVALID_ARGUMENT, "positions is NULL");
-    if (stride == 0) stride = 3 * sizeof(float);
-    if (stride < 3 * sizeof(float)) return fail(TP_ERROR_INVALID_ARGUMENT, "position_stride is below 12 bytes");
+    stride = tetprobe::resolve_stride(stride, 3 * sizeof(float), "position_stride");
     if (count == 0) return fail(TP_ERROR_DEGENERATE, "no probe positions (count is 0)");
     out.resize(3 * count);
     for (size_t i = 0; i < count; ++i) {
@@ -200,8 +200,7 @@ TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t p
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(out_sh);
-    if (sh_stride == 0) sh_stride = 27 * sizeof(float);
-    if (sh_stride < 27 * sizeof(float)) return fail(TP_ERROR_INVALID_ARGUMENT, "sh_stride is below 108 bytes");
+    sh_stride = tetprobe::resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
     tetprobe::BakeSettings settings;
     if (tp_status s = read_options(options, settings)) return s;
     std::vector<float> probes;

@@ -1,5 +1,6 @@
 // C ABI of the run-time store: load, save, inspect and query.
 #include "boundary.h"
+#include "strides.h"
 #include "core/store.h"
 #include "store_handle.h"
 
@@ -31,14 +32,6 @@ T* strided(T* base, size_t index, size_t stride) {
     return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + index * stride);
 }
 
-// A stride in bytes: 0 means tightly packed; anything else must hold a whole element.
-size_t resolve_stride(size_t stride, size_t element, const char* name) {
-    if (stride == 0) return element;
-    if (stride < element)
-        throw Error(TP_ERROR_INVALID_ARGUMENT, std::string(name) + " (" + std::to_string(stride) +
-                                                   ") is smaller than one element (" + std::to_string(element) + " bytes)");
-    return stride;
-}
 
 std::string system_error(const std::string& what, const char* path) {
     return what + " '" + path + "': " + std::strerror(errno);
