@@ -83,21 +83,45 @@ void add_facets_1d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& 
     }
 }
 
-// Whether facet f's vertex normals, seen from outside, turn the same way as its corners: the
-// triangle they span far out along the rays (t N_a, t N_b, t N_c) is then not mirrored.
-bool normals_turn_with_facet(const Hull& hull, const HullFacet& f) {
-    const Eigen::Vector3d& a = hull.vertex_normals[f.probes[0]];
-    const Eigen::Vector3d& b = hull.vertex_normals[f.probes[1]];
-    const Eigen::Vector3d& c = hull.vertex_normals[f.probes[2]];
-    return a.dot(b.cross(c)) > 0;
+// How far out, in set diagonals, every outer cell keeps its orientation. Without a bound no float
+// normals would do: across nearly coplanar facets (a jittered lattice's sides) the true divergence
+// of the normals is as small as their rounding, so far enough out some moved facet turns over.
+constexpr double kOuterCellReach = 1e5;
+
+// Whether facet f, moved out along its vertex normals as stored (float) to any t in [0, reach],
+// keeps its orientation: (e1 + t d1) x (e2 + t d2) . facet normal = A + B t + C t^2 stays positive,
+// so that its outer cell does not fold over its neighbours there.
+bool facet_keeps_orientation(const Hull& hull, const HullFacet& f, const std::vector<Eigen::Vector3d>& p,
+                             double reach) {
+    auto normal = [&](int k) {
+        return Eigen::Vector3d(hull.vertex_normals[f.probes[size_t(k)]].cast<float>().cast<double>());
+    };
+    const Eigen::Vector3d e1 = p[f.probes[1]] - p[f.probes[0]], e2 = p[f.probes[2]] - p[f.probes[0]];
+    const Eigen::Vector3d d1 = normal(1) - normal(0), d2 = normal(2) - normal(0);
+    const Eigen::Vector3d facet = e1.cross(e2);
+    const double area = facet.norm();
+    // A zero-area facet has no orientation of its own; its normals' triangle must not be mirrored.
+    if (!(area > 0)) return normal(0).dot(normal(1).cross(normal(2))) > 0;
+    const Eigen::Vector3d unit = facet / area;
+    const double b = unit.dot(e1.cross(d2) + d1.cross(e2)), c = unit.dot(d1.cross(d2));
+    auto g = [&](double t) { return area + t * (b + t * c); };
+    if (!(g(reach) > 0)) return false;
+    const double lowest = c > 0 ? -b / (2 * c) : 0;
+    return !(lowest > 0 && lowest < reach) || g(lowest) > 0;
 }
 
 // Averaged normals can mirror the normal triangle of a skinny facet next to a nearly coplanar one;
-// far out, the outer cells of such facets then fold over their neighbours (a point on a hull
+// out there, the outer cells of such facets then fold over their neighbours (a point on a hull
 // probe's ray lands in a cell that does not hold the probe). Where that happens, the normals of the
 // facet's probes are relaxed towards the mean of their hull neighbours' normals (a spherical
 // Laplacian step, which untangles the normal mesh), keeping every ray outward of its own facets.
 void untangle_vertex_normals(Hull& hull, const std::vector<Eigen::Vector3d>& p) {
+    Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+    for (const Eigen::Vector3d& q : p) {
+        lo = lo.cwiseMin(q);
+        hi = hi.cwiseMax(q);
+    }
+    const double reach = kOuterCellReach * (hi - lo).norm();
     std::vector<std::vector<uint32_t>> ring(p.size()), facets_at(p.size());
     for (uint32_t i = 0; i < hull.facets.size(); ++i) {
         const HullFacet& f = hull.facets[i];
@@ -118,7 +142,7 @@ void untangle_vertex_normals(Hull& hull, const std::vector<Eigen::Vector3d>& p) 
     for (int round = 0; round < 64; ++round) {
         std::vector<uint32_t> tangled;
         for (const HullFacet& f : hull.facets) {
-            if (normals_turn_with_facet(hull, f)) continue;
+            if (facet_keeps_orientation(hull, f, p, reach)) continue;
             tangled.insert(tangled.end(), f.probes.begin(), f.probes.begin() + 3);
         }
         if (tangled.empty()) return;

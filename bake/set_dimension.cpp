@@ -17,6 +17,12 @@ Eigen::Vector3d SetShape::reduce(const Eigen::Vector3d& p) const {
     }
 }
 
+Eigen::Vector2d SetShape::plane_coordinates(const Eigen::Vector3d& p) const {
+    Eigen::Index dropped = 0;
+    axes.col(2).cwiseAbs().maxCoeff(&dropped);
+    return Eigen::Vector2d(p[(dropped + 1) % 3], p[(dropped + 2) % 3]);
+}
+
 SetShape detect_set_dimension(const std::vector<Eigen::Vector3d>& points, double diagonal, double flat_tolerance) {
     SetShape shape;
     if (points.empty()) return shape;

@@ -21,7 +21,18 @@ struct SetShape {
 
     // Coordinates of p in the set's own frame reduced to its dimension (unused components zero).
     Eigen::Vector3d reduce(const Eigen::Vector3d& p) const;
+
+    // Flat set: p's two coordinates other than the one along which the normal is largest. Unlike
+    // reduce(), no arithmetic, so probes exactly collinear in space stay exactly collinear for the
+    // triangulation (a rotation rounds them into slivers). An affine map of the plane, exactly a
+    // similarity for a plane at a constant coordinate.
+    Eigen::Vector2d plane_coordinates(const Eigen::Vector3d& p) const;
 };
+
+// A flat (line) set further than this fraction of the diagonal from its fitted plane (line) is
+// projected onto it before triangulating; a set closer to it than that is already on it up to the
+// fit's own double rounding and is stored exactly as given.
+constexpr double kOnSetTolerance = 1e-9;
 
 // Smallest thickness, relative to the diagonal, still treated as 3D (or 2D) whatever the caller's
 // tolerance: well above float rounding of the stored coordinates (6e-8 of the diagonal), so that no

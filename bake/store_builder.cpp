@@ -98,7 +98,7 @@ SimplexMesh triangulate(const std::vector<Eigen::Vector3d>& points, const SetSha
         }
         case 2: {
             std::vector<Eigen::Vector2d> uv(points.size());
-            for (size_t j = 0; j < points.size(); ++j) uv[j] = shape.reduce(points[j]).head<2>();
+            for (size_t j = 0; j < points.size(); ++j) uv[j] = shape.plane_coordinates(points[j]);
             return delaunay_triangulate_plane(uv);
         }
         default: return delaunay_tetrahedralize(points);
@@ -195,8 +195,10 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     SetShape shape = merge_and_detect(local, diagonal, settings, groups);
 
     // A flat (line) set is stored on its fitted plane (line): the queries' extrusion across the plane
-    // is then the orthogonal projection every later stage and the run time assume.
-    if (shape.dimension == 1 || shape.dimension == 2) {
+    // is then the orthogonal projection every later stage and the run time assume. A set already on
+    // it keeps its coordinates, so that probes exactly collinear stay so (and exact at queries).
+    const double off_set = shape.dimension == 1 ? shape.line_distance : shape.plane_distance;
+    if ((shape.dimension == 1 || shape.dimension == 2) && off_set > kOnSetTolerance * diagonal) {
         for (uint32_t i : groups.kept) {
             const Eigen::Vector3d on_set = shape.centre + shape.axes * shape.reduce(local[i]);
             for (int a = 0; a < 3; ++a) local[i][a] = double(float(on_set[a]));

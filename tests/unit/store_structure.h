@@ -133,12 +133,19 @@ inline void check_layout_and_links(const StoreData& d) {
     f.report("neighbours");
 }
 
-// Outer cells wound outward, hull normals unit (zero off the hull), and far out each moved facet
-// turning like the facet itself (otherwise the cell folds over its neighbours).
+// Outer cells wound outward, hull normals unit (zero off the hull), and each facet moved out along
+// its normals turning like the facet itself up to 1e5 diagonals out (otherwise the cell folds over
+// its neighbours there), sampled at a few distances.
 inline void check_outer_geometry(const StoreData& d) {
     const uint32_t dim = d.dimension, inner = d.inner_cell_count;
     std::vector<char> on_hull(d.probe_count(), 0);
     const reference::Frame frame = reference::frame_of(d);
+    Vec lo = Vec::Constant(HUGE_VAL), hi = -lo;
+    for (uint32_t j = 0; j < d.probe_count(); ++j) {
+        lo = lo.cwiseMin(reference::position(d, j));
+        hi = hi.cwiseMax(reference::position(d, j));
+    }
+    const double diagonal = (hi - lo).norm();
     Failures f;
     for (uint32_t c = inner; c < d.cell_count(); ++c) {
         const uint32_t base = d.cell_neighbours[4 * size_t(c) + dim];
@@ -164,7 +171,13 @@ inline void check_outer_geometry(const StoreData& d) {
             side = (p1 - p0).cross(p2 - p0).dot(inside - p0);
             Vec n[3];
             for (uint32_t k = 0; k < 3; ++k) n[k] = reference::normal(d, d.cell_vertices[4 * size_t(c) + k]);
-            STRUCTURE_CHECK(f, n[0].dot(n[1].cross(n[2])) > 0, "outer cell " << c << " normals mirrored");
+            // Moved out along its normals, the facet keeps its orientation up to 1e5 diagonals.
+            const Vec facet = (p1 - p0).cross(p2 - p0);
+            for (double t : {0.0, 1e-2, 1.0, 1e2, 1e3, 1e4, 3e4, 1e5}) {
+                const Vec q0 = p0 + t * diagonal * n[0], q1 = p1 + t * diagonal * n[1], q2 = p2 + t * diagonal * n[2];
+                STRUCTURE_CHECK(f, (q1 - q0).cross(q2 - q0).dot(facet) > 0,
+                                "outer cell " << c << " turns over at " << t << " diagonals out");
+            }
         } else if (dim == 2) {
             const Vec p1 = reference::position(d, d.cell_vertices[4 * size_t(c) + 1]);
             side = (p1 - p0).cross(inside - p0).dot(frame.n);

@@ -488,3 +488,85 @@ TEST_CASE("builder: a flat set with collinear boundary probes keeps every probe"
     REQUIRE(d.dimension == 2);
     REQUIRE(d.probe_count() == 7);
 }
+
+namespace {
+
+// Every input probe answers as its survivor alone, with the hint carried from query to query as a
+// moving object would.
+void require_exact_at_inputs(const StoreData& d, const std::vector<float>& positions) {
+    const std::vector<uint8_t> blob = tetprobe::write_store_blob(d);
+    const auto store = tetprobe::Store::load(blob.data(), blob.size());
+    int32_t hint = -1;
+    for (size_t i = 0; i < positions.size() / 3; ++i) {
+        const tetprobe::Location loc = store->locate(&positions[3 * i], hint);
+        REQUIRE(loc.status == TP_OK);
+        hint = loc.cell;
+        float own = 0;
+        for (int k = 0; k < 4; ++k)
+            if (loc.probes[k] == d.input_remap[i]) own += loc.weights[k];
+        INFO("input probe " << i);
+        REQUIRE(own == Approx(1).margin(1e-5));
+    }
+}
+
+}  // namespace
+
+TEST_CASE("builder: a flat set already on its plane keeps its coordinates and makes no slivers", "[builder]") {
+    // Found by fuzz_build: probes on the plane y = 0, four of them on one straight stretch of the
+    // boundary. Rotated into the plane's principal axes and rounded, the four were no longer
+    // collinear; TetGen then built slivers along them, and the end probe was left in a sliver only,
+    // which the run time never answers. Triangulated in the plane's own coordinates they stay
+    // exactly collinear.
+    SECTION("the fuzzer's set") {
+        const std::vector<float> positions = {0, 0, 3, 4, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, -1, 0, 0, 1};
+        const StoreData d = build(positions);
+        REQUIRE(d.dimension == 2);
+        REQUIRE(d.probe_count() == 5);
+        REQUIRE(d.inner_cell_count == 3);  // a fan from (4, 0, 0) over the three boundary segments
+        require_exact_at_inputs(d, positions);
+    }
+    SECTION("random small-integer sets on axis planes") {
+        uint32_t state = 12345;
+        auto next = [&state](int range) {
+            state = state * 1664525u + 1013904223u;
+            return int((state >> 8) % uint32_t(range)) - range / 2;
+        };
+        for (int trial = 0; trial < 300; ++trial) {
+            std::vector<float> positions;
+            const int count = 4 + trial % 12, kind = trial % 2;
+            for (int i = 0; i < count; ++i) {
+                const int a = next(9), b = next(9);
+                switch (kind) {
+                    case 0: positions.insert(positions.end(), {float(a), 2.5f, float(b)}); break;
+                    case 1: positions.insert(positions.end(), {float(a), float(b), -7.0f}); break;
+                    case 2: positions.insert(positions.end(), {float(a), float(b), float(a + b)}); break;
+                    default: positions.insert(positions.end(), {float(2 * a - b), float(a), float(b)}); break;
+                }
+            }
+            BuildSettings settings;
+            StoreData d;
+            try {
+                d = tetprobe::build_store_data(positions.data(), 12, nullptr, 108, size_t(count), settings);
+            } catch (const tetprobe::Error&) {
+                continue;  // fewer than three distinct probes off one line: not this test's concern
+            }
+            if (d.dimension != 2) continue;
+            INFO("trial " << trial << " kind " << kind);
+            structure::check_all(d);
+            // Stored exactly as given: the local position is the input minus the origin, rounded once.
+            for (size_t i = 0; i < size_t(count); ++i) {
+                const uint32_t s = d.input_remap[i];
+                if (d.probe_source[s] != i) continue;
+                for (int c = 0; c < 3; ++c) REQUIRE(d.positions[3 * s + c] == float(double(positions[3 * i + c]) - d.origin[c]));
+            }
+            // No sliver: with integer coordinates in [-4, 4] a real triangle's area is at least 1/2.
+            for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+                const reference::Vec p0 = reference::position(d, d.cell_vertices[4 * c]);
+                const reference::Vec p1 = reference::position(d, d.cell_vertices[4 * c + 1]);
+                const reference::Vec p2 = reference::position(d, d.cell_vertices[4 * c + 2]);
+                REQUIRE((p1 - p0).cross(p2 - p0).norm() > 0.5);
+            }
+            require_exact_at_inputs(d, positions);
+        }
+    }
+}
