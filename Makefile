@@ -33,11 +33,10 @@ fuzz-build: deps
 	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
 	cmake --build $(BUILD)-fuzz -j $(JOBS) --target fuzz_load fuzz_build
 
-FUZZ_SECONDS ?= 20
 fuzz-short: fuzz-build
-	bash tests/fuzz/run.sh $(BUILD)-fuzz $(FUZZ_SECONDS)
+	bash tests/fuzz/run.sh $(BUILD)-fuzz short
 
-fuzz: FUZZ_SECONDS = 600
+FUZZ_SECONDS ?= 600
 fuzz: fuzz-build
 	bash tests/fuzz/run.sh $(BUILD)-fuzz $(FUZZ_SECONDS)
 

@@ -1,11 +1,23 @@
 #!/usr/bin/env bash
-# Runs each fuzz target for SECONDS (short in `make test`, long in `make fuzz`) from a seed corpus.
+# Runs each fuzz target from the seed corpus.
+#   run.sh BUILD short   `make test`: a fixed seed and a fixed number of runs from a fresh corpus, so
+#                        every machine explores the same inputs and a failure reproduces.
+#   run.sh BUILD SECONDS `make fuzz`: a random seed for SECONDS per target, growing the kept corpus.
 set -uo pipefail
-build="$1"; seconds="${2:-20}"; root="$(cd "$(dirname "$0")/../.." && pwd)"
+build="$1"; mode="${2:-short}"; root="$(cd "$(dirname "$0")/../.." && pwd)"
+declare -A short_runs=([fuzz_load]=1000000 [fuzz_build]=15000)
 passed=0; failed=0
 for target in fuzz_load fuzz_build; do
-  corpus="$build/corpus-$target"; mkdir -p "$corpus"
-  seeds=()
+  if [ "$mode" = short ]; then
+    corpus="$build/corpus-$target-short"; rm -rf "$corpus"
+    limits=(-seed=20261121 -runs="${short_runs[$target]}" -max_total_time=300)
+    what="${short_runs[$target]} runs, seed 20261121"
+  else
+    corpus="$build/corpus-$target"
+    limits=(-max_total_time="$mode")
+    what="${mode}s"
+  fi
+  mkdir -p "$corpus"
   if [ "$target" = fuzz_load ] && [ -d "$root/tests/unit/golden" ]; then
     for f in "$root"/tests/unit/golden/*.bin; do
       [ -e "$f" ] || continue
@@ -14,13 +26,14 @@ for target in fuzz_load fuzz_build; do
   fi
   # Inputs that once failed stay in the corpus, so every run replays them first.
   if [ -d "$root/tests/fuzz/seeds/$target" ]; then cp "$root/tests/fuzz/seeds/$target"/* "$corpus/"; fi
-  echo "fuzzing $target for ${seconds}s"
-  if "$build/tests/$target" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+  echo "fuzzing $target: $what"
+  if "$build/tests/$target" "${limits[@]}" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
        -artifact_prefix="$build/crash-$target-" "$corpus" > "$build/$target.log" 2>&1; then
     grep -E "^(Done|stat::number_of_executed_units)" "$build/$target.log" | head -2
     passed=$((passed+1))
   else
-    echo "FAIL: $target"; tail -40 "$build/$target.log"; failed=$((failed+1))
+    echo "FAIL: $target (reproduce: $build/tests/$target $build/crash-$target-*)"; tail -40 "$build/$target.log"
+    failed=$((failed+1))
   fi
 done
 echo "fuzz: $passed passed, $failed failed"
