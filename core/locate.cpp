@@ -267,16 +267,19 @@ int exit_slot(const CellView<Index>& cells, uint32_t cell, const double* w, uint
     return back;  // a real disagreement: going back lets the step cap and the exhaustive search settle it
 }
 
+// The exhaustive search over cells [first_cell, cell_count): all cells, or (first_cell =
+// inner_cell_count) only the outer cells, for a point known to be outside the hull. Returns false,
+// leaving loc alone, when no cell of the range holds the point.
 template <class Index>
-Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
+bool locate_exhaustive_from(const Store::Impl& s, const double local[3], uint32_t first_cell, Location& out) {
     const CellView<Index> cells(s);
     const Vec3 p{local[0], local[1], local[2]};
     const uint32_t d = s.dimension;
     double best_score = -std::numeric_limits<double>::infinity();
-    uint32_t best_cell = 0;
+    uint32_t best_cell = kNoCell;
     double best_weights[4] = {1, 0, 0, 0};
     double best_t = 0;
-    for (uint32_t cell = 0; cell < s.cell_count; ++cell) {
+    for (uint32_t cell = first_cell; cell < s.cell_count; ++cell) {
         double w[4] = {0, 0, 0, 0};
         double t = 0;
         uint32_t used;
@@ -309,6 +312,10 @@ Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
             for (int k = 0; k < 4; ++k) best_weights[k] = w[k];
         }
     }
+    if (best_cell == kNoCell) {
+        if (first_cell > 0) return false;
+        best_cell = 0;  // nothing finite anywhere: the first cell, as good as any
+    }
     Location loc;
     loc.fallback = true;
     loc.cell = int32_t(best_cell);
@@ -317,10 +324,19 @@ Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
     if (s.cell_count == s.inner_cell_count && (s.header.flags & kFlagNoExtrapolation) && d > 0 &&
         !(best_score >= -kInsideToleranceD)) {
         loc.status = TP_ERROR_OUTSIDE;
-        return loc;
+        out = loc;
+        return true;
     }
     loc.t = float(best_t);
     set_weights(cells, best_cell, outer ? d : d + 1, best_weights, loc);
+    out = loc;
+    return true;
+}
+
+template <class Index>
+Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
+    Location loc;
+    locate_exhaustive_from<Index>(s, local, 0, loc);
     return loc;
 }
 
@@ -334,6 +350,7 @@ Location walk_cells(const Store::Impl& s, const double local[3], const float loc
     uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(local);
     uint32_t previous = kNoCell;
     double last_t = -1.0;  // t of the last outer cell that held p's moved facet
+    bool beyond_hull = false;  // an outer cell found p strictly beyond its hull facet
     // The last few cells: a walk that comes back to one of them is cycling, which a consistent
     // walk never does, so the exhaustive search takes over at once.
     uint32_t recent[kRecentCells];
@@ -387,6 +404,7 @@ Location walk_cells(const Store::Impl& s, const double local[3], const float loc
             const double guess_t = last_t >= 0 ? last_t : facet_distance(cells, cell, p);
             const OuterView o = view_outer_cell(cells, cell, p, base == previous, guess_t);
             if (!o.finite) break;
+            beyond_hull = beyond_hull || o.f0 > 0;
             if (o.f0 <= 0 && base != previous) {
                 previous = cell;
                 cell = base;
@@ -412,8 +430,13 @@ Location walk_cells(const Store::Impl& s, const double local[3], const float loc
         previous = cell;
         cell = cells.neighbour(cell, uint32_t(slot));
     }
-    // Lost (a cycle, the step cap, or an undecidable cell): decide over all cells in double.
-    Location loc = locate_exhaustive_typed<Index>(s, local);
+    // Lost (a cycle, the step cap, or an undecidable cell): decide in double over all cells, or over
+    // the outer cells alone (a few hundred, not hundreds of thousands) for a point beyond a hull
+    // facet, hence outside the convex hull, where far out neighbouring outer cells' sweeps can
+    // disagree about their shared side.
+    Location loc;
+    if (!beyond_hull || !locate_exhaustive_from<Index>(s, local, s.inner_cell_count, loc))
+        locate_exhaustive_from<Index>(s, local, 0, loc);
     loc.steps = steps;
     return loc;
 }
@@ -467,6 +490,11 @@ void mark_zero_volume_cells(Store::Impl& store) {
 }
 
 LocateFunction locate_function(bool index32) { return index32 ? &walk<uint32_t> : &walk<uint16_t>; }
+
+bool locate_exhaustive_outer(const Store::Impl& store, const double local_position[3], Location& out) {
+    return store.index32 ? locate_exhaustive_from<uint32_t>(store, local_position, store.inner_cell_count, out)
+                         : locate_exhaustive_from<uint16_t>(store, local_position, store.inner_cell_count, out);
+}
 
 Location locate_exhaustive(const Store::Impl& store, const double local_position[3]) {
     return store.index32 ? locate_exhaustive_typed<uint32_t>(store, local_position)

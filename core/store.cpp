@@ -95,4 +95,13 @@ Location Store::locate(const float world_position[3], int32_t hint) const {
     return impl_->locate(*impl_, world_position, hint);
 }
 
+Location Store::locate_exhaustive(const float world_position[3], Cells cells) const {
+    double local[3];
+    for (int k = 0; k < 3; ++k) local[k] = double(world_position[k]) - impl_->origin[k];
+    Location loc;
+    if (cells == Cells::all) return tetprobe::locate_exhaustive(*impl_, local);
+    if (!locate_exhaustive_outer(*impl_, local, loc)) loc.cell = -1;
+    return loc;
+}
+
 }  // namespace tetprobe

@@ -42,6 +42,10 @@ public:
 
     // Finds the cell of a world-space position starting from hint (-1 = none: start from the grid).
     Location locate(const float world_position[3], int32_t hint) const;
+    // The walk's referee: the cell decided in double over every cell (O(cells)), or over the outer
+    // cells alone (the walk's fallback for a point beyond the hull; cell -1 if none holds it).
+    enum class Cells { all, outer };
+    Location locate_exhaustive(const float world_position[3], Cells cells) const;
     // locate + blend; *hint (may be null) is read and updated. Returns TP_OK or TP_ERROR_OUTSIDE.
     tp_status interpolate(const float world_position[3], int32_t* hint, float out_sh[27]) const;
 

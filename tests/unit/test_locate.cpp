@@ -391,3 +391,77 @@ TEST_CASE("a walk misled by inconsistent matrices ends in the exhaustive double-
     const float beyond[3] = {1.0f, -0.5f, 0.0f};
     REQUIRE(b.store->locate(beyond, 1).status == TP_ERROR_OUTSIDE);
 }
+
+namespace {
+
+// Whether a local point is strictly beyond some hull facet of a 3D or flat store (the side away from
+// the facet's inner cell), decided from the positions alone in double.
+bool beyond_some_hull_facet(const StoreData& d, const reference::Vec& p) {
+    const reference::Frame frame = reference::frame_of(d);
+    for (uint32_t c = d.inner_cell_count; c < d.cell_count(); ++c) {
+        const uint32_t base = d.cell_neighbours[4 * size_t(c) + d.dimension];
+        std::vector<uint32_t> facet;
+        for (uint32_t k = 0; k < d.dimension; ++k) facet.push_back(d.cell_vertices[4 * size_t(c) + k]);
+        uint32_t apex = 0;
+        for (uint32_t k = 0; k <= d.dimension; ++k) {
+            const uint32_t v = d.cell_vertices[4 * size_t(base) + k];
+            if (std::find(facet.begin(), facet.end(), v) == facet.end()) apex = v;
+        }
+        const reference::Vec p0 = reference::position(d, facet[0]), inside = reference::position(d, apex);
+        const reference::Vec across = d.dimension == 3
+                                          ? reference::Vec((reference::position(d, facet[1]) - p0).cross(reference::position(d, facet[2]) - p0))
+                                          : reference::Vec((reference::position(d, facet[1]) - p0).cross(frame.n));
+        if (across.dot(p - p0) * across.dot(inside - p0) < 0) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("walk fallback beyond the hull: the outer cells alone decide as all cells do", "[locate]") {
+    // A lost walk for a point beyond a hull facet searches only the outer cells. That is sound when
+    // no inner cell holds such a point (the hull is convex) and the best cell over all cells is an
+    // outer one whenever any cell holds the point.
+    families::ProbeSet box = families::random_cloud(300, 31);
+    for (int corner = 0; corner < 8; ++corner) box.add(corner & 1 ? 10 : 0, corner & 2 ? 10 : 0, corner & 4 ? 10 : 0);
+    box.add(5e-4, 1.05, 9.65);  // nearly on a face: skinny hull facets
+    box.add(1.17, 6.5e-5, 6.07);
+    const std::vector<families::ProbeSet> sets = {box, families::random_cloud(200, 32), families::lattice(4, 4, 4),
+                                                  families::lattice(4, 4, 4, 1, 2.4e-7), families::plane(40, 33)};
+    std::mt19937 rng(34);
+    std::normal_distribution<double> g;
+    int beyond = 0, outer_answers = 0;
+    for (const families::ProbeSet& set : sets) {
+        const Built b = build(set.positions);
+        const reference::Vec lo(b.data.bounds_min[0], b.data.bounds_min[1], b.data.bounds_min[2]);
+        const reference::Vec hi(b.data.bounds_max[0], b.data.bounds_max[1], b.data.bounds_max[2]);
+        const reference::Vec centre = 0.5 * (lo + hi);
+        const double diagonal = (hi - lo).norm();
+        for (int i = 0; i < 600 / kQueryScale + 20; ++i) {
+            reference::Vec direction(g(rng), g(rng), g(rng));
+            if (b.data.dimension == 2) direction -= direction.dot(reference::frame_of(b.data).n) * reference::frame_of(b.data).n;
+            const double radius = diagonal * std::pow(10.0, std::uniform_real_distribution<double>(-0.4, 5.0)(rng));
+            const Query q = make_query(b.data, centre + radius * direction.normalized());
+            if (!beyond_some_hull_facet(b.data, q.local)) continue;
+            ++beyond;
+            INFO(set.name << " query " << q.world[0] << ", " << q.world[1] << ", " << q.world[2]);
+            const Location all = b.store->locate_exhaustive(q.world, Store::Cells::all);
+            const Location outer = b.store->locate_exhaustive(q.world, Store::Cells::outer);
+            REQUIRE(outer.cell >= int32_t(b.data.inner_cell_count));
+            if (all.kind == TP_CELL_INNER) {
+                // An inner cell can only win where no outer cell holds the point: it does not hold it either.
+                const reference::Answer r = reference::locate(b.data, q.local);
+                REQUIRE(r.score < 0);
+                continue;
+            }
+            ++outer_answers;
+            REQUIRE(outer.cell == all.cell);
+            REQUIRE(weight_difference(weight_map(outer), weight_map(all)) == 0);
+            // And the walk itself, from the centre's cell and from no hint, answers the same.
+            const Location walked = b.store->locate(q.world, -1);
+            REQUIRE(weight_difference(weight_map(walked), weight_map(all)) <= 1e-4);
+        }
+    }
+    INFO(beyond << " points beyond the hull, " << outer_answers << " answered by an outer cell over all cells");
+    REQUIRE(outer_answers > beyond * 9 / 10);
+}
