@@ -2,6 +2,7 @@
 // exactness at probes, linear precision inside the hull, continuity (C0) across every face crossed by
 // dense random segments (inside, across the hull, between outer cells), the walk against the slow
 // reference, extrapolation along hull rays, the half-precision store, and 32-bit indices.
+#include "exact_referee.h"
 #include "probe_families.h"
 #include "reference_interpolator.h"
 #include "store_structure.h"
@@ -115,6 +116,9 @@ struct Measured {
     size_t unbracketed = 0;        // crossings whose facet the double check could not pin down
     size_t fallbacks = 0;
     size_t queries = 0;
+    size_t exact_checked = 0;       // 3D inner answers put to the exact referee
+    size_t exact_misses = 0;        // ... whose cell does not hold the point exactly
+    double exact_miss_depth = 0;    // the deepest miss as a fraction of the input's precision there
     size_t probes = 0;             // stored probes
 };
 
@@ -290,6 +294,32 @@ void check_continuity(const Built& b, std::mt19937& rng, Measured& m, int segmen
     }
 }
 
+// How far p lies outside inner cell c (its most negative barycentric, in double), as a fraction of
+// what the walk's float decision allows: its inside tolerance (1e-5) plus a few float steps of the
+// query's world and local coordinates, relative to the cell's smallest height. At most 1 means the
+// cell is correct up to the precision of the input.
+double miss_against_precision(const StoreData& d, uint32_t c, const Query& q) {
+    double w[4];
+    reference::inner_barycentrics(d, reference::frame_of(d), c, q.local, w);
+    const double depth = -std::min({w[0], w[1], w[2], w[3]});
+    Vec v[4];
+    for (uint32_t k = 0; k < 4; ++k) v[k] = reference::position(d, reference::vertex(d, c, k));
+    const double volume = std::fabs((v[1] - v[0]).cross(v[2] - v[0]).dot(v[3] - v[0]));  // 6 x volume
+    double largest_face = 0;
+    for (uint32_t k = 0; k < 4; ++k) {
+        const Vec& a = v[(k + 1) % 4];
+        largest_face = std::max(largest_face, (v[(k + 2) % 4] - a).cross(v[(k + 3) % 4] - a).norm());
+    }
+    const double height = volume / largest_face;
+    double world = 0, local = 0;
+    for (int a = 0; a < 3; ++a) {
+        world = std::max(world, std::fabs(double(q.world[a])));
+        local = std::max(local, std::fabs(q.local[a]));
+    }
+    const double precision = 8 * (std::ldexp(world, -23) + std::ldexp(local, -23));
+    return depth / (2e-5 + precision / height);
+}
+
 // The walk (from no hint and from a far hint) against the brute-force reference.
 void check_walk_against_reference(const Built& b, std::mt19937& rng, Measured& m, int samples) {
     const StoreData& d = b.data;
@@ -311,7 +341,50 @@ void check_walk_against_reference(const Built& b, std::mt19937& rng, Measured& m
             const double difference = largest_difference(weights_of(loc), truth.weights);
             INFO("point " << q.local.transpose() << " cell " << loc.cell << " reference cell " << truth.cell);
             m.walk_vs_reference = std::max(m.walk_vs_reference, difference);
+            // The exact referee: the walk's inner cell holds the point, or misses it only by the
+            // float decision's tolerance.
+            if (d.dimension == 3 && loc.kind == TP_CELL_INNER) {
+                ++m.exact_checked;
+                if (!exact::cell_holds(d, uint32_t(loc.cell), q.local)) {
+                    ++m.exact_misses;
+                    m.exact_miss_depth = std::max(m.exact_miss_depth, miss_against_precision(d, uint32_t(loc.cell), q));
+                }
+            }
         }
+    }
+}
+
+// The walk (hint carried, as a moving object's) against the exact referee, at random points in
+// and around the set and at points on probes, edges and faces of random cells.
+void check_walk_exactly(const Built& b, std::mt19937& rng, Measured& m, int samples) {
+    const StoreData& d = b.data;
+    if (d.dimension != 3) return;
+    std::uniform_int_distribution<uint32_t> pick(0, d.inner_cell_count - 1);
+    std::uniform_real_distribution<double> u(0, 1);
+    int32_t hint = -1;
+    for (int s = 0; s < samples; ++s) {
+        Vec p;
+        if (s % 4 == 0) {
+            p = random_point(b, rng, 0.05);
+        } else {
+            // On a vertex (s % 4 == 1), an edge (2) or a face (3) of a random inner cell.
+            const uint32_t c = pick(rng);
+            double w[3] = {1, 0, 0};
+            if (s % 4 >= 2) w[0] = u(rng), w[1] = 1 - w[0];
+            if (s % 4 == 3) w[2] = u(rng) * w[1], w[1] -= w[2];
+            p = Vec::Zero();
+            for (uint32_t k = 0; k < 3; ++k) p += w[k] * reference::position(d, reference::vertex(d, c, k));
+        }
+        const Query q = query_at(d, p);
+        const tetprobe::Location loc = b.store->locate(q.world, hint);
+        if (loc.status == TP_ERROR_OUTSIDE && d.cell_count() == d.inner_cell_count) continue;
+        REQUIRE(loc.status == TP_OK);
+        hint = loc.cell;
+        if (loc.kind != TP_CELL_INNER) continue;
+        ++m.exact_checked;
+        if (exact::cell_holds(d, uint32_t(loc.cell), q.local)) continue;
+        ++m.exact_misses;
+        m.exact_miss_depth = std::max(m.exact_miss_depth, miss_against_precision(d, uint32_t(loc.cell), q));
     }
 }
 
@@ -357,13 +430,16 @@ Measured run_family(const families::ProbeSet& set, uint32_t seed, const Bounds& 
     if (b.data.dimension > 0) check_linear_precision(b, rng, m, (kSlow ? 30 : 300) * effort);
     check_continuity(b, rng, m, (kSlow ? 2 : 12) * effort, kSlow ? 40 : 150);
     check_walk_against_reference(b, rng, m, (kSlow ? 4 : 60) * effort);
+    check_walk_exactly(b, rng, m, (kSlow ? 200 : 3000) * effort);
     check_rays(b, m, size_t((kSlow ? 6 : 60) * effort));
     WARN(set.name << ": probes " << b.data.probe_count() << "/" << set.count() << ", dimension " << b.data.dimension
                   << ", cells " << b.data.inner_cell_count << "+" << (b.data.cell_count() - b.data.inner_cell_count)
                   << " | probe error " << m.probe_error << ", linear error " << m.linear_error << ", C0 jump "
                   << m.c0_jump << ", between outer cells " << m.c0_jump_outer << " (walk " << m.c0_jump_walk << ", " << m.crossings << " crossings, " << m.skipped_crossings << " not adjacent, " << m.unbracketed << " not bracketed), walk vs reference "
                   << m.walk_vs_reference << ", ray error " << m.ray_error << ", fallbacks " << m.fallbacks << "/"
-                  << m.queries);
+                  << m.queries << ", exact referee: " << m.exact_checked - m.exact_misses << "/" << m.exact_checked
+                  << " inner cells hold their point exactly, the rest miss by at most " << m.exact_miss_depth
+                  << " of the input's precision");
     CHECK(m.probe_error <= bounds.probe);
     CHECK(m.linear_error <= bounds.linear);
     CHECK(m.c0_jump <= bounds.c0);
@@ -371,6 +447,7 @@ Measured run_family(const families::ProbeSet& set, uint32_t seed, const Bounds& 
     CHECK(m.c0_jump_walk <= bounds.c0_walk);
     CHECK(m.walk_vs_reference <= bounds.walk);
     CHECK(m.ray_error <= bounds.ray);
+    CHECK(m.exact_miss_depth <= 1);
     return m;
 }
 
