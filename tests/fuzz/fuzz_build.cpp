@@ -46,8 +46,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         return 0;  // refused with a status: fine, as long as the process is alive
     }
     // Every input probe is reproduced exactly by its survivor (weight 1 at the survivor), up to the
-    // float32 resolution of the stored local positions: a probe whose nearest neighbour is much
-    // closer than the set is wide sits on a grid of about extent * 2^-24, coarse next to that gap.
+    // float32 resolution of the stored local positions (a grid of about extent * 2^-24) and the
+    // walk's inside tolerance (1e-5 of a cell, which may be as wide as the set), both coarse next
+    // to a probe whose nearest neighbour is much closer than the set is wide.
     const tetprobe::StoreHeader& header = store->header();
     double extent = 0;
     for (int a = 0; a < 3; ++a)
@@ -61,7 +62,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             for (int a = 0; a < 3; ++a) d2 += std::pow(double(positions[3 * p + a]) - double(positions[3 * q + a]), 2);
             nearest = std::min(nearest, std::sqrt(d2));
         }
-        const double tolerance = std::max(1e-3, 16 * std::ldexp(extent, -24) / nearest);
+        const double tolerance = std::max(1e-3, (16 * std::ldexp(1.0, -24) + 2e-5) * extent / nearest);
         tetprobe::Location loc = store->locate(&positions[3 * p], hint);
         if (loc.status != TP_OK) __builtin_trap();
         hint = loc.cell;
