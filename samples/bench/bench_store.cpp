@@ -264,8 +264,9 @@ int run_store_bench(int argc, char** argv) {
         row("outside the hull, cold", time_queries(*store, outside_cold, HintMode::none));
     }
     std::printf("\ncoherent: an object moving 0.2%% of the box per frame; cold and teleport: uniform random points "
-                "inside the hull; outside: a shell at 1.2x the box's half-diagonal (outer cells); fallback: the walk hit "
-                "its step cap and decided by the exact search.\n\n");
+                "inside the hull; outside: a shell at 1.2x the box's half-diagonal (outer cells); fallback: the walk cycled "
+                "or hit its step cap and decided by the exhaustive search in double (over the outer cells alone "
+                "beyond the hull).\n\n");
 
     std::printf("### Size and build time\n\n");
     std::printf("| probes | cells (inner + outer) | index bits | bytes | bytes/probe | bytes/cell | build ms | "
