@@ -65,6 +65,16 @@ ScreenedProbes screen_probe_input(const float* positions, size_t position_stride
             out.sh[i * 27 + c] = value;
         }
     }
+    Eigen::Vector3d lo = out.positions[0], hi = lo;
+    for (const Eigen::Vector3d& p : out.positions) {
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+    }
+    const double extent = (hi - lo).norm();
+    if (extent > 0 && extent < kMinSetExtent) {
+        throw Error(TP_ERROR_DEGENERATE, "the probes span only " + describe(float(extent)) +
+                                             " units: a set with distinct probes must span at least 1e-9");
+    }
     return out;
 }
 

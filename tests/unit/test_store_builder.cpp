@@ -280,6 +280,12 @@ TEST_CASE("builder: bad input is refused with a status naming the probe", "[buil
     REQUIRE(e.second.find("probe 6") != std::string::npos);
 
     REQUIRE(build_error({}).first == TP_ERROR_DEGENERATE);
+    // Distinct probes closer than 1e-9 units: refused; identical probes (one position) are fine.
+    const auto tiny = build_error({1e-20f, 0, 0, 0, 3e-21f, 0, 0, 0, 1e-20f, 2e-21f, 2e-21f, 2e-21f});
+    REQUIRE(tiny.first == TP_ERROR_DEGENERATE);
+    REQUIRE(tiny.second.find("span") != std::string::npos);
+    REQUIRE(build_error({0, 0, 0, 2e-9f, 0, 0}).first == TP_OK);
+    REQUIRE(build_error({5, 5, 5, 5, 5, 5}).first == TP_OK);
 
     BuildSettings bad;
     bad.merge_tolerance = -1;
