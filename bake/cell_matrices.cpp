@@ -8,8 +8,45 @@
 #include <cfloat>
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace tetprobe {
+
+void anchor_cells_at_central_probe(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& positions) {
+    const uint32_t d = mesh.dimension;
+    if (d < 2) return;  // a segment's two probes are equally central
+    for (size_t c = 0; c < mesh.cell_count(); ++c) {
+        CellSlots& v = mesh.vertices[c];
+        CellSlots& n = mesh.neighbours[c];
+        Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+        for (uint32_t k = 0; k <= d; ++k) centroid += positions[v[k]];
+        centroid /= double(d + 1);
+        uint32_t central = d;
+        for (uint32_t k = 0; k < d; ++k) {
+            if ((positions[v[k]] - centroid).squaredNorm() < (positions[v[central]] - centroid).squaredNorm()) central = k;
+        }
+        if (central == d) continue;
+        if (d == 2) {
+            // A rotation of the three slots (even) that ends with the central probe in slot 2.
+            const uint32_t shift = central + 1;
+            const CellSlots vv = v, nn = n;
+            for (uint32_t k = 0; k < 3; ++k) {
+                v[k] = vv[(k + shift) % 3];
+                n[k] = nn[(k + shift) % 3];
+            }
+        } else {
+            // Two transpositions (even): central <-> 3, and the other two slots with each other.
+            uint32_t others[2], count = 0;
+            for (uint32_t k = 0; k < 3; ++k) {
+                if (k != central) others[count++] = k;
+            }
+            std::swap(v[central], v[3]);
+            std::swap(n[central], n[3]);
+            std::swap(v[others[0]], v[others[1]]);
+            std::swap(n[others[0]], n[others[1]]);
+        }
+    }
+}
 
 std::vector<std::array<double, 12>> inner_cell_matrices(const SimplexMesh& mesh,
                                                          const std::vector<Eigen::Vector3d>& positions,
@@ -44,8 +81,8 @@ std::vector<std::array<double, 12>> inner_cell_matrices(const SimplexMesh& mesh,
         }
         for (uint32_t k = 0; k < d; ++k) {
             const Eigen::Vector3d r = rows.row(k).transpose();
-            const double w = -r.dot(last);
-            const double values[4] = {r.x(), r.y(), r.z(), w};
+            // Relative to the slot-d probe (store_format.h), where every b_k with k < d is zero.
+            const double values[4] = {r.x(), r.y(), r.z(), 0.0};
             for (int j = 0; j < 4; ++j) {
                 if (!std::isfinite(values[j]) || std::fabs(values[j]) > double(FLT_MAX)) {
                     throw Error(TP_ERROR_INTERNAL, "inner cell " + std::to_string(c) + " is degenerate");

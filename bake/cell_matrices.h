@@ -12,7 +12,14 @@
 
 namespace tetprobe {
 
-// Row-major 3x4 per inner cell: b_k = M[k].xyz . p + M[k].w for k < d, rows >= d zero. 3D inverts
+// Puts each inner cell's most central probe (nearest the cell's centroid) in slot d, by an even
+// permutation of its slots (vertices with their neighbours: orientation kept). The rows are relative
+// to slot d, so their float error grows with a query's distance from it; in a needle (three close
+// probes and a far one) the far probe as anchor would cost ~1e-4 exactly where the cell is thin.
+void anchor_cells_at_central_probe(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& positions);
+
+// Row-major 3x4 per inner cell, relative to the slot-d probe P_d (store_format.h):
+// b_k = M[k].xyz . (p - P_d) + M[k].w for k < d (w is zero), rows >= d zero. 3D inverts
 // [P0-P3, P1-P3, P2-P3]; 2D inverts [P0-P2, P1-P2, n] and keeps rows 0 and 1 (so a query's offset
 // along the plane normal n is ignored: the triangulation is extruded); 1D measures along the line
 // direction u, b0 = (p-P1).u / (P0-P1).u, so that neighbouring segments split space by the same

@@ -66,17 +66,19 @@ OuterCells build_outer_cells(SimplexMesh& inner, const Hull& hull, const std::ve
 
         std::array<Row, 4> rows;
         if (d == 3) {
-            const Eigen::Vector3d P[3] = {positions[facet.probes[0]], positions[facet.probes[1]], positions[facet.probes[2]]};
+            // Rows relative to the slot-0 probe (store_format.h).
+            const Eigen::Vector3d& origin = positions[facet.probes[0]];
+            const Eigen::Vector3d P[3] = {Eigen::Vector3d::Zero(), positions[facet.probes[1]] - origin,
+                                          positions[facet.probes[2]] - origin};
             const Eigen::Vector3d N[3] = {normals[facet.probes[0]], normals[facet.probes[1]], normals[facet.probes[2]]};
             rows = polynomial_rows_3d(P, N);
         } else if (d == 2) {
-            const Eigen::Vector3d P[2] = {positions[facet.probes[0]], positions[facet.probes[1]]};
+            const Eigen::Vector3d P[2] = {Eigen::Vector3d::Zero(), positions[facet.probes[1]] - positions[facet.probes[0]]};
             const Eigen::Vector3d N[2] = {normals[facet.probes[0]], normals[facet.probes[1]]};
             rows = polynomial_rows_2d(P, N, plane_normal);
         } else {
-            const Eigen::Vector3d& P = positions[facet.probes[0]];
             const Eigen::Vector3d& N = normals[facet.probes[0]];
-            rows = {Row::Zero(), Row::Zero(), Row::Zero(), affine_row(N, -N.dot(P))};
+            rows = {Row::Zero(), Row::Zero(), Row::Zero(), affine_row(N, 0.0)};
         }
         // One positive factor for all rows: the largest coefficient becomes 1, which keeps every
         // coefficient within float range at any scale of the set (1D rows are already unit).

@@ -18,9 +18,11 @@ uint32_t walk_inner_cells(const StoreData& data, const double p[3], uint32_t cel
     const uint32_t cap = 64 + 4 * inner;
     for (uint32_t step = 0; step < cap; ++step) {
         const float* m = &data.inner_matrices[size_t(cell) * 12];
+        const float* anchor = &data.positions[size_t(data.cell_vertices[size_t(cell) * 4 + d]) * 3];
+        const double q[3] = {p[0] - anchor[0], p[1] - anchor[1], p[2] - anchor[2]};
         double b[4], sum = 0;
         for (uint32_t k = 0; k < d; ++k) {
-            b[k] = m[k * 4] * p[0] + m[k * 4 + 1] * p[1] + m[k * 4 + 2] * p[2] + m[k * 4 + 3];
+            b[k] = m[k * 4] * q[0] + m[k * 4 + 1] * q[1] + m[k * 4 + 2] * q[2] + m[k * 4 + 3];
             sum += b[k];
         }
         b[d] = 1 - sum;

@@ -229,6 +229,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     if (extrapolate) outer = build_outer_cells(mesh, hull, points, normals, shape.axes.col(2));
 
     report_progress(settings, 0.7f, "matrices");
+    anchor_cells_at_central_probe(mesh, points);  // the outer cells link to cells, not slots: safe here
     const std::vector<std::array<double, 12>> inner_matrices = inner_cell_matrices(mesh, points, shape);
 
     StoreData data;

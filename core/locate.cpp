@@ -146,8 +146,9 @@ OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, b
     const Store::Impl& s = cells.s;
     const uint32_t d = s.dimension;
     const float* m = s.outer_matrices + 16 * size_t(cell - s.inner_cell_count);
+    const Vec3 q = p - probe_position(s, cells.vertex(cell, 0));  // rows are relative to slot 0
     double c[4];
-    for (int r = 0; r < 4; ++r) c[r] = m[4 * r] * p.x + m[4 * r + 1] * p.y + m[4 * r + 2] * p.z + double(m[4 * r + 3]);
+    for (int r = 0; r < 4; ++r) c[r] = m[4 * r] * q.x + m[4 * r + 1] * q.y + m[4 * r + 2] * q.z + double(m[4 * r + 3]);
     OuterView v;
     v.finite = all_finite(c, 4);
     v.f0 = c[3];
@@ -370,9 +371,12 @@ Location walk_cells(const Store::Impl& s, const double local[3], const float loc
         int slot;
         if (cell < s.inner_cell_count) {
             const float* m = s.inner_matrices + 12 * size_t(cell);
+            // Rows are relative to the slot-d probe: the difference is exact near it (Sterbenz).
+            const float* anchor = s.positions + 3 * size_t(cells.vertex(cell, d));
+            const float q[3] = {local_f[0] - anchor[0], local_f[1] - anchor[1], local_f[2] - anchor[2]};
             float sum = 0.0f;
             for (uint32_t k = 0; k < d; ++k) {
-                const float b = m[4 * k] * local_f[0] + m[4 * k + 1] * local_f[1] + m[4 * k + 2] * local_f[2] + m[4 * k + 3];
+                const float b = m[4 * k] * q[0] + m[4 * k + 1] * q[1] + m[4 * k + 2] * q[2] + m[4 * k + 3];
                 w[k] = b;
                 sum += b;
             }

@@ -1,4 +1,4 @@
-// The store blob, format version 1: one contiguous, position-independent, little-endian buffer.
+// The store blob, format version 2: one contiguous, position-independent, little-endian buffer.
 // This file is the single description of the layout; the writer and the loader both follow it.
 //
 //   [header: 116 bytes][section table: kSectionCount x {uint64 offset, uint64 size}][sections...]
@@ -16,10 +16,13 @@
 //   is none (the hull of a store built without extrapolation, and the far side of a line's end
 //   cell, which holds every point beyond that end); slots above d are kNone. An outer
 //   cell's neighbour d is the inner cell it rests on; its neighbours below d are outer cells.
-// - inner matrix (12 floats, row-major 3x4, per inner cell): barycentric b_k = M[k].xyz . p + M[k].w
-//   for k < d, b_d = 1 - sum; rows >= d are zero.
+// - inner matrix (12 floats, row-major 3x4, per inner cell): barycentric b_k = M[k].xyz . (p - P_d)
+//   + M[k].w for k < d, b_d = 1 - sum, with P_d the position of the cell's probe in slot d; rows >= d
+//   are zero. Relative to a vertex, not to the origin, so that a small cell far from the origin keeps
+//   float precision (format 1 used p itself, and lost ~1e-4 in cells of 0.5 at 400 from the origin).
 // - outer matrix (16 floats, row-major 4x4, per outer cell): coefficient r of the polynomial
-//   f(t) = c0 t^3 + c1 t^2 + c2 t + c3 is c_r = M[r].xyz . p + M[r].w. The rows are scaled by a
+//   f(t) = c0 t^3 + c1 t^2 + c2 t + c3 is c_r = M[r].xyz . (p - P_0) + M[r].w, with P_0 the position
+//   of the cell's probe in slot 0. The rows are scaled by a
 //   positive factor; f(0) = c3 > 0 exactly when p is strictly outside the hull facet. The cell's
 //   vertex k at parameter t sits at position_k + t * normal_k; f(t) = 0 where p lies in the plane
 //   (d = 3) or on the line (d = 2, measured across the flat set's plane) of those moved vertices.
@@ -36,7 +39,7 @@
 namespace tetprobe {
 
 constexpr char kStoreMagic[8] = {'T', 'E', 'T', 'P', 'R', 'O', 'B', 'E'};
-constexpr uint32_t kStoreFormatVersion = 1;
+constexpr uint32_t kStoreFormatVersion = 2;
 constexpr size_t kSectionAlignment = 16;
 
 constexpr uint32_t kFlagIndex32 = 1u;          // indices are uint32, else uint16

@@ -761,10 +761,13 @@ static void test_store_blobs_and_files(void) {
     bytes[0] = 'X';
     EXPECT_STATUS(tp_store_load(bytes, size, &copy), TP_ERROR_INVALID_BLOB);
     bytes[0] = 'T';
-    bytes[8] = 99; /* format_version, little-endian uint32 after the 8-byte magic */
-    repair_checksum(bytes, size);
-    EXPECT_STATUS(tp_store_load(bytes, size, &copy), TP_ERROR_VERSION);
-    bytes[8] = 1;
+    {
+        const unsigned char version = bytes[8]; /* format_version, little-endian uint32 after the magic */
+        bytes[8] = 99;
+        repair_checksum(bytes, size);
+        EXPECT_STATUS(tp_store_load(bytes, size, &copy), TP_ERROR_VERSION);
+        bytes[8] = version;
+    }
     repair_checksum(bytes, size);
     EXPECT_OK(tp_store_load(bytes, size, &copy));
     tp_store_release(copy);

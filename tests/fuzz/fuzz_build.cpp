@@ -38,8 +38,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
     tetprobe::BuildSettings settings;
     std::unique_ptr<tetprobe::Store> store;
+    std::vector<float> stored;  // the stored probes' local positions (a line or flat set projected)
     try {
         tetprobe::StoreData d = tetprobe::build_store_data(positions.data(), 12, sh.data(), 108, count, settings);
+        stored = d.positions;
         std::vector<uint8_t> blob = tetprobe::write_store_blob(d);
         store = tetprobe::Store::load(blob.data(), blob.size());
     } catch (const tetprobe::Error&) {
@@ -48,18 +50,20 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // Every input probe is reproduced exactly by its survivor (weight 1 at the survivor), up to the
     // float32 resolution of the stored local positions (a grid of about extent * 2^-24) and the
     // walk's inside tolerance (1e-5 of a cell, which may be as wide as the set), both coarse next
-    // to a probe whose nearest neighbour is much closer than the set is wide.
+    // to a stored probe whose nearest neighbour is much closer than the set is wide (measured
+    // between stored positions: a line set's gaps are along the line).
     const tetprobe::StoreHeader& header = store->header();
     double extent = 0;
     for (int a = 0; a < 3; ++a)
         extent = std::max(extent, std::fabs(double(header.bounds_max[a]) - double(header.bounds_min[a])));
     int32_t hint = -1;
     for (size_t p = 0; p < count; ++p) {
+        const uint32_t own = store->input_to_stored(uint32_t(p));
         double nearest = HUGE_VAL;
-        for (size_t q = 0; q < count; ++q) {
-            if (store->input_to_stored(uint32_t(q)) == store->input_to_stored(uint32_t(p))) continue;
+        for (size_t q = 0; q < stored.size() / 3; ++q) {
+            if (q == own) continue;
             double d2 = 0;
-            for (int a = 0; a < 3; ++a) d2 += std::pow(double(positions[3 * p + a]) - double(positions[3 * q + a]), 2);
+            for (int a = 0; a < 3; ++a) d2 += std::pow(double(stored[3 * own + a]) - double(stored[3 * q + a]), 2);
             nearest = std::min(nearest, std::sqrt(d2));
         }
         const double tolerance = std::max(1e-3, (16 * std::ldexp(1.0, -24) + 2e-5) * extent / nearest);

@@ -57,7 +57,8 @@ inline void finish(StoreData& d) {
 }
 
 // Rows of the inner barycentric matrix of a simplex of dimension dim (slots 0..dim), projecting
-// onto the simplex's affine hull: b_k = M[k].xyz . p + M[k].w for k < dim.
+// onto the simplex's affine hull: b_k = M[k].xyz . (p - P_dim) + M[k].w for k < dim, with P_dim the
+// slot-dim probe (store_format.h), where every such b_k is zero.
 inline void append_inner_matrix(StoreData& d, const std::array<uint32_t, 4>& v, uint32_t dim) {
     std::array<float, 12> m{};
     if (dim == 1) {
@@ -65,17 +66,16 @@ inline void append_inner_matrix(StoreData& d, const std::array<uint32_t, 4>& v, 
         const Vec e = position(d, v[0]) - position(d, v[1]);
         const Vec row = e / e.squaredNorm();
         for (int j = 0; j < 3; ++j) m[j] = float(row[j]);
-        m[3] = float(-row.dot(position(d, v[1])));
+        m[3] = 0.0f;
     } else if (dim > 0) {
         const Vec last = position(d, v[dim]);
         Eigen::MatrixXd edges(3, dim);
         for (uint32_t k = 0; k < dim; ++k) edges.col(k) = position(d, v[k]) - last;
         // b = pinv(edges) (p - last): least squares, i.e. the projection onto the affine hull.
         const Eigen::MatrixXd pinv = (edges.transpose() * edges).inverse() * edges.transpose();
-        const Eigen::VectorXd offset = -pinv * last;
         for (uint32_t k = 0; k < dim; ++k) {
             for (int j = 0; j < 3; ++j) m[4 * k + j] = float(pinv(k, j));
-            m[4 * k + 3] = float(offset(k));
+            m[4 * k + 3] = 0.0f;
         }
     }
     d.inner_matrices.insert(d.inner_matrices.end(), m.begin(), m.end());
@@ -96,23 +96,24 @@ inline double outer_function(const StoreData& d, const std::array<uint32_t, 3>& 
 }
 
 // The outer matrix of a cell: f is cubic in t and affine in p, so 4 values of t at 4 points recover
-// its 16 coefficients. sign flips f so that it is positive outside; scale keeps the floats tame.
+// its 16 coefficients (relative to the slot-0 probe). sign flips f so that it is positive outside;
+// scale keeps the floats tame.
 inline void append_outer_matrix(StoreData& d, const std::array<uint32_t, 3>& v, uint32_t dim, const Vec& plane_normal,
                                 double sign) {
     std::array<float, 16> m{};
     if (dim == 1) {
         const Vec n = normal(d, v[0]);
-        const Vec a = position(d, v[0]);
         m[12] = float(n.x());
         m[13] = float(n.y());
         m[14] = float(n.z());
-        m[15] = float(-n.dot(a));
+        m[15] = 0.0f;
     } else {
         const double ts[4] = {0.0, 1.0, -1.0, 2.0};
         Eigen::Matrix4d vandermonde;
         for (int i = 0; i < 4; ++i)
             for (int r = 0; r < 4; ++r) vandermonde(i, r) = std::pow(ts[i], 3 - r);
-        const Vec points[4] = {Vec::Zero(), Vec::UnitX(), Vec::UnitY(), Vec::UnitZ()};
+        const Vec anchor = position(d, v[0]);
+        const Vec points[4] = {anchor, anchor + Vec::UnitX(), anchor + Vec::UnitY(), anchor + Vec::UnitZ()};
         Eigen::Matrix4d coefficient;  // (power row r, point j)
         for (int j = 0; j < 4; ++j) {
             Eigen::Vector4d values;

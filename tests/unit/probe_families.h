@@ -53,6 +53,19 @@ inline ProbeSet slab(int n, double squash) {
     return s;
 }
 
+// A level: a sparse cloud over a kilometre, and a dense, jittered room of probes half a metre apart
+// far from the set's centroid (where float rows relative to the origin lost 1e-4).
+inline ProbeSet dense_room_in_a_level(uint32_t seed) {
+    ProbeSet s{"dense room in a level", {}};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1000), j(-0.01, 0.01);
+    for (int i = 0; i < 200; ++i) s.add(u(rng), u(rng), u(rng));
+    for (int z = 0; z < 6; ++z)
+        for (int y = 0; y < 6; ++y)
+            for (int x = 0; x < 6; ++x) s.add(100 + 0.5 * x + j(rng), 200 + 0.5 * y + j(rng), 300 + 0.5 * z + j(rng));
+    return s;
+}
+
 inline ProbeSet plane(int n, uint32_t seed) {
     ProbeSet s{"plane", {}};
     std::mt19937 rng(seed);

@@ -209,6 +209,7 @@ inline void check_inner_matrices(const StoreData& d, uint32_t seed, uint32_t max
     uint32_t flat_cells = 0, checked_cells = 0;
     for (uint32_t c = 0; c < inner; c += stride) {
         const float* m = &d.inner_matrices[12 * size_t(c)];
+        const Vec anchor = reference::position(d, d.cell_vertices[4 * size_t(c) + dim]);
         ++checked_cells;
         if (dim == 3) {
             // A cell of zero volume (TetGen keeps some when rounding makes four probes coplanar) has
@@ -236,10 +237,11 @@ inline void check_inner_matrices(const StoreData& d, uint32_t seed, uint32_t max
             for (uint32_t k = 0; k <= dim; ++k) {
                 double b;
                 if (k < dim) {
-                    b = m[4 * k] * p.x() + m[4 * k + 1] * p.y() + m[4 * k + 2] * p.z() + m[4 * k + 3];
+                    const Vec q = p - anchor;
+                    b = m[4 * k] * q.x() + m[4 * k + 1] * q.y() + m[4 * k + 2] * q.z() + m[4 * k + 3];
                     stored_sum += b;
-                    bound += std::fabs(m[4 * k] * p.x()) + std::fabs(m[4 * k + 1] * p.y()) +
-                             std::fabs(m[4 * k + 2] * p.z()) + std::fabs(m[4 * k + 3]);
+                    bound += std::fabs(m[4 * k] * q.x()) + std::fabs(m[4 * k + 1] * q.y()) +
+                             std::fabs(m[4 * k + 2] * q.z()) + std::fabs(m[4 * k + 3]);
                 } else {
                     b = 1 - stored_sum;
                 }
@@ -286,8 +288,9 @@ inline void check_outer_matrices(const StoreData& d, uint32_t seed) {
             if (dim == 2) offset -= offset.dot(frame.n) * frame.n;  // off-plane reads are checked by extrusion
             const Vec p = P[0] + offset;
             double coefficient[4];
+            const Vec q = p - P[0];  // rows are relative to the slot-0 probe
             for (int r = 0; r < 4; ++r)
-                coefficient[r] = m[4 * r] * p.x() + m[4 * r + 1] * p.y() + m[4 * r + 2] * p.z() + m[4 * r + 3];
+                coefficient[r] = m[4 * r] * q.x() + m[4 * r + 1] * q.y() + m[4 * r + 2] * q.z() + m[4 * r + 3];
             if (dim == 1) {
                 STRUCTURE_CHECK(f, coefficient[0] == 0 && coefficient[1] == 0 && coefficient[2] == 0, "outer cell " << c);
                 STRUCTURE_CHECK(f, std::fabs(coefficient[3] - (p - P[0]).dot(N[0])) <= 1e-6 * diagonal, "outer cell " << c);

@@ -576,3 +576,28 @@ TEST_CASE("builder: a flat set already on its plane keeps its coordinates and ma
         }
     }
 }
+
+TEST_CASE("builder: inner rows are anchored at each cell's most central probe", "[builder]") {
+    // The rows' float error grows with the distance from the slot-d probe they are relative to, so
+    // that slot holds the probe nearest the cell's centroid (needle cells: a near probe, not the far
+    // one); the permutation is even, so every cell keeps its positive orientation.
+    for (const families::ProbeSet& set : {families::dense_room_in_a_level(5), families::plane(50, 6)}) {
+        const StoreData d = build(set.positions);
+        structure::check_all(d);
+        const uint32_t dim = d.dimension;
+        for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+            reference::Vec centroid = reference::Vec::Zero();
+            for (uint32_t k = 0; k <= dim; ++k) centroid += reference::position(d, d.cell_vertices[4 * c + k]) / double(dim + 1);
+            const double anchor = (reference::position(d, d.cell_vertices[4 * c + dim]) - centroid).squaredNorm();
+            for (uint32_t k = 0; k < dim; ++k)
+                REQUIRE(anchor <= (reference::position(d, d.cell_vertices[4 * c + k]) - centroid).squaredNorm());
+            for (int k = 0; k < 4; ++k) REQUIRE(d.inner_matrices[12 * c + 4 * size_t(k % 3) + 3] == 0.0f);
+            const reference::Vec p0 = reference::position(d, d.cell_vertices[4 * c]);
+            const reference::Vec e1 = reference::position(d, d.cell_vertices[4 * c + 1]) - p0;
+            const reference::Vec e2 = reference::position(d, d.cell_vertices[4 * c + 2]) - p0;
+            const double orientation = dim == 3 ? e1.cross(e2).dot(reference::position(d, d.cell_vertices[4 * c + 3]) - p0)
+                                                : e1.cross(e2).dot(reference::plane_normal(d));
+            REQUIRE(orientation >= 0);
+        }
+    }
+}
