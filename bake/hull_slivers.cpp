@@ -45,6 +45,34 @@ uint32_t facet_opposite(const CellSlots& v, uint32_t d, uint32_t k, uint32_t out
     return n;
 }
 
+double longest_edge(const CellSlots& v, uint32_t d, const std::vector<Eigen::Vector3d>& p) {
+    double longest = 0;
+    for (uint32_t i = 0; i <= d; ++i) {
+        for (uint32_t j = i + 1; j <= d; ++j) longest = std::max(longest, (p[v[i]] - p[v[j]]).norm());
+    }
+    return longest;
+}
+
+// Distance of the probe in slot k from the plane (2D: the line, within the set's plane) of the
+// cell's other probes; 0 when those are themselves a sliver (three nearly collinear probes, whose
+// plane is no plane: the facet is degenerate and peeled in turn, not a place a probe can be beyond).
+double height_over_opposite_facet(const CellSlots& v, uint32_t d, uint32_t k, const std::vector<Eigen::Vector3d>& p,
+                                  const SetShape& shape) {
+    uint32_t facet[3];
+    const uint32_t size = facet_opposite(v, d, k, facet);
+    const Eigen::Vector3d& o = p[facet[0]];
+    const Eigen::Vector3d across = size == 3 ? Eigen::Vector3d((p[facet[1]] - o).cross(p[facet[2]] - o))
+                                             : Eigen::Vector3d((p[facet[1]] - o).cross(shape.axes.col(2)));
+    double longest = 0;
+    for (uint32_t i = 0; i < size; ++i) {
+        for (uint32_t j = i + 1; j < size; ++j) longest = std::max(longest, (p[facet[i]] - p[facet[j]]).norm());
+    }
+    const double length = across.norm();
+    const double facet_thickness = size == 3 ? length / (longest * longest) : 1.0;
+    if (!(length > 0) || !(facet_thickness >= kSliverThickness)) return 0;
+    return std::fabs(across.dot(p[v[k]] - o)) / length;
+}
+
 }  // namespace
 
 double cell_thickness(const SimplexMesh& mesh, size_t cell, const std::vector<Eigen::Vector3d>& p,
@@ -122,6 +150,15 @@ size_t peel_hull_slivers(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& 
             }
         }
         if (!manifold) continue;
+        // Each exposed facet becomes hull with the probe opposite it beyond it by its height: that
+        // must be sliver-thin too. A needle (three close probes and a far one) is thin by volume,
+        // yet can leave a probe far outside a new hull facet, whose outer cell then answers there.
+        const double depth = kSliverThickness * longest_edge(v, d, positions);
+        bool shallow = true;
+        for (uint32_t k = 0; k <= d; ++k) {
+            if (open & (1u << k)) shallow = shallow && height_over_opposite_facet(v, d, k, positions, shape) < depth;
+        }
+        if (!shallow) continue;
 
         alive[c] = 0;
         ++peeled;

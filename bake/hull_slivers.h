@@ -17,7 +17,9 @@ namespace tetprobe {
 constexpr double kSliverThickness = 1e-5;
 
 // Repeatedly removes hull cells (d = 2, 3) thinner than kSliverThickness while the boundary stays a
-// manifold and every probe keeps a cell; renumbers the remaining cells. Returns how many were removed.
+// manifold, every probe keeps a cell, and no probe ends farther than kSliverThickness x the cell's
+// longest edge beyond a facet the removal exposes; renumbers the remaining cells. Returns how many
+// were removed.
 size_t peel_hull_slivers(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& positions, const SetShape& shape);
 
 // Thickness of a cell as above (1 for dimensions below 2).

@@ -445,9 +445,10 @@ Location walk_cells(const Store::Impl& s, const double local[3], const float loc
     return loc;
 }
 
-// A query at a probe's own stored position answers that probe alone, whatever cell holds it: a
-// zero-volume cell (TetGen keeps some where rounding makes four probes coplanar) has no meaningful
-// barycentrics there, and exactness at probes must not depend on which cell the walk ends in.
+// A query at a probe's own stored position answers that probe alone, whatever cell (inner, or outer
+// at t = 0) holds it: a zero-volume cell (TetGen keeps some where rounding makes four probes
+// coplanar) has no meaningful barycentrics there, an outer cell's root is only float-accurate, and
+// exactness at probes must not depend on which cell the walk ends in.
 template <class Index>
 Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
     double local[3];
@@ -457,12 +458,15 @@ Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
         local_f[k] = float(local[k]);
     }
     Location loc = walk_cells<Index>(s, local, local_f, hint);
-    if (loc.status != TP_OK || loc.kind != TP_CELL_INNER) return loc;
-    for (uint32_t k = 0; k <= s.dimension; ++k) {
+    if (loc.status != TP_OK) return loc;
+    // An outer cell's probes are its slots below d (a hull probe is often reached through one).
+    const uint32_t probes = loc.kind == TP_CELL_INNER ? s.dimension + 1 : s.dimension;
+    for (uint32_t k = 0; k < probes; ++k) {
         const uint32_t probe = loc.probes[k];
         const float* v = s.positions + 3 * size_t(probe);
         if (v[0] == local_f[0] && v[1] == local_f[1] && v[2] == local_f[2]) {
             for (uint32_t j = 0; j < 4; ++j) loc.weights[j] = j == k ? 1.0f : 0.0f;
+            loc.t = 0.0f;  // a hull probe sits on its own ray at t = 0
             break;
         }
     }

@@ -601,3 +601,17 @@ TEST_CASE("builder: inner rows are anchored at each cell's most central probe", 
         }
     }
 }
+
+TEST_CASE("builder: a needle on the hull is not peeled as a sliver", "[builder]") {
+    // Found by fuzz_build: near the hull a needle cell (three probes close together, one far away)
+    // has almost no volume relative to its longest edge, but peeling it left the probe at
+    // (0.86, -1.05e15, 0) 1e-4 of the set's size beyond a new hull facet, whose outer cell then
+    // answered a query at that probe. Peeling now requires every probe to stay that close.
+    const std::vector<float> positions = {-2.3038981e-02f, 4.5559e-41f, 1.076e-42f, -9.228156e+18f, -2.5245947e-29f,
+                                          1.36e-43f, 1.8525781e+02f, 1.6495023e-33f, 1.6495023e-33f, 1.6495023e-33f,
+                                          1.6495023e-33f, 6.1743466e+16f, 6.1743466e+16f, 6.1743466e+16f,
+                                          6.1743466e+16f, 8.568627e-01f, -1.0526106e+15f, -3.6268155e-14f};
+    const StoreData d = build(positions);
+    REQUIRE(d.dimension == 3);
+    require_exact_at_inputs(d, positions);
+}
