@@ -16,6 +16,9 @@ namespace {
 constexpr uint32_t kNoCell = 0xFFFFFFFFu;
 constexpr uint32_t kRecentCells = 8;
 constexpr double kInsideToleranceD = double(kInsideTolerance);
+// 32 float steps (2^-24 each) of a barycentric's terms: the rows' own rounding, the products and the
+// sums, with room to spare.
+constexpr double kRowRounding = 32.0 / 16777216.0;
 
 template <class Index>
 struct IndexTraits;
@@ -374,15 +377,23 @@ Location walk_cells(const Store::Impl& s, const double local[3], const float loc
             // Rows are relative to the slot-d probe: the difference is exact near it (Sterbenz).
             const float* anchor = s.positions + 3 * size_t(cells.vertex(cell, d));
             const float q[3] = {local_f[0] - anchor[0], local_f[1] - anchor[1], local_f[2] - anchor[2]};
-            float sum = 0.0f;
+            float sum = 0.0f, bound[4] = {0, 0, 0, 0};
             for (uint32_t k = 0; k < d; ++k) {
-                const float b = m[4 * k] * q[0] + m[4 * k + 1] * q[1] + m[4 * k + 2] * q[2] + m[4 * k + 3];
+                const float* r = m + 4 * k;
+                const float b = r[0] * q[0] + r[1] * q[1] + r[2] * q[2] + r[3];
                 w[k] = b;
                 sum += b;
+                bound[k] = std::fabs(r[0] * q[0]) + std::fabs(r[1] * q[1]) + std::fabs(r[2] * q[2]) + std::fabs(r[3]);
+                bound[d] += bound[k];
             }
             w[d] = 1.0f - sum;
+            // Inside up to the rounding of the float rows and of their evaluation (a few float steps
+            // of the terms' sizes), and never more than kInsideTolerance: the fixed tolerance alone is
+            // relative to the cell, and in a cell a million times wider than a neighbouring gap it
+            // would swallow the probe across that gap.
             bool inside = true;
-            for (uint32_t k = 0; k <= d; ++k) inside &= w[k] >= -kInsideToleranceD;  // false for NaN
+            for (uint32_t k = 0; k <= d; ++k)
+                inside &= w[k] >= -std::fmin(kInsideToleranceD, kRowRounding * double(bound[k]));  // false for NaN
             const bool flat = !s.zero_volume.empty() && s.zero_volume[cell];
             if (inside && !flat) {
                 set_weights(cells, cell, d + 1, w, loc);
