@@ -447,8 +447,8 @@ Location walk_cells(const Store::Impl& s, const double local[3], const float loc
     }
     // Lost (a cycle, the step cap, or an undecidable cell): decide in double over all cells, or over
     // the outer cells alone (a few hundred, not hundreds of thousands) for a point beyond a hull
-    // facet, hence outside the convex hull, where far out neighbouring outer cells' sweeps can
-    // disagree about their shared side.
+    // facet, hence outside the hull (which peeled slivers leave non-convex by at most their depth,
+    // 1e-5 of their length), where far out neighbouring outer cells' sweeps can disagree.
     Location loc;
     if (!beyond_hull || !locate_exhaustive_from<Index>(s, local, s.inner_cell_count, loc))
         locate_exhaustive_from<Index>(s, local, 0, loc);

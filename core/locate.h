@@ -21,8 +21,9 @@ void mark_zero_volume_cells(Store::Impl& store);
 // walk's fallback, and a referee for tests. Never allocates.
 Location locate_exhaustive(const Store::Impl& store, const double local_position[3]);
 
-// The same over the outer cells alone, for a point beyond a hull facet (then outside the convex hull,
-// so an outer cell answers it): O(outer cells). Returns false, leaving out alone, when none holds it.
+// The same over the outer cells alone, for a point beyond a hull facet (then outside the hull, up to
+// the depth of peeled slivers, so an outer cell answers it): O(outer cells). Returns false, leaving
+// out alone, when none holds it.
 bool locate_exhaustive_outer(const Store::Impl& store, const double local_position[3], Location& out);
 
 }  // namespace tetprobe
