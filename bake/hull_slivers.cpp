@@ -80,10 +80,7 @@ double cell_thickness(const SimplexMesh& mesh, size_t cell, const std::vector<Ei
     const uint32_t d = mesh.dimension;
     if (d < 2) return 1;
     const CellSlots& v = mesh.vertices[cell];
-    double longest = 0;
-    for (uint32_t i = 0; i <= d; ++i) {
-        for (uint32_t j = i + 1; j <= d; ++j) longest = std::max(longest, (p[v[i]] - p[v[j]]).norm());
-    }
+    const double longest = longest_edge(v, d, p);
     if (!(longest > 0)) return 0;
     const Eigen::Vector3d a = p[v[1]] - p[v[0]], b = p[v[2]] - p[v[0]];
     if (d == 2) return std::fabs(a.cross(b).dot(shape.axes.col(2))) / (longest * longest);

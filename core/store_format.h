@@ -19,7 +19,7 @@
 // - inner matrix (12 floats, row-major 3x4, per inner cell): barycentric b_k = M[k].xyz . (p - P_d)
 //   + M[k].w for k < d, b_d = 1 - sum, with P_d the position of the cell's probe in slot d; rows >= d
 //   are zero. Relative to a vertex, not to the origin, so that a small cell far from the origin keeps
-//   float precision (format 1 used p itself, and lost ~1e-4 in cells of 0.5 at 400 from the origin).
+//   float precision (format 1 used p itself: half-metre cells 400 units from the origin could miss a probe).
 // - outer matrix (16 floats, row-major 4x4, per outer cell): coefficient r of the polynomial
 //   f(t) = c0 t^3 + c1 t^2 + c2 t + c3 is c_r = M[r].xyz . (p - P_0) + M[r].w, with P_0 the position
 //   of the cell's probe in slot 0. The rows are scaled by a

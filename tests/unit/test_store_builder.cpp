@@ -591,7 +591,7 @@ TEST_CASE("builder: inner rows are anchored at each cell's most central probe", 
             const double anchor = (reference::position(d, d.cell_vertices[4 * c + dim]) - centroid).squaredNorm();
             for (uint32_t k = 0; k < dim; ++k)
                 REQUIRE(anchor <= (reference::position(d, d.cell_vertices[4 * c + k]) - centroid).squaredNorm());
-            for (int k = 0; k < 4; ++k) REQUIRE(d.inner_matrices[12 * c + 4 * size_t(k % 3) + 3] == 0.0f);
+            for (uint32_t k = 0; k < dim; ++k) REQUIRE(d.inner_matrices[12 * c + 4 * k + 3] == 0.0f);
             const reference::Vec p0 = reference::position(d, d.cell_vertices[4 * c]);
             const reference::Vec e1 = reference::position(d, d.cell_vertices[4 * c + 1]) - p0;
             const reference::Vec e2 = reference::position(d, d.cell_vertices[4 * c + 2]) - p0;
