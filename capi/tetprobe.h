@@ -50,7 +50,7 @@ extern "C" {
 #endif
 
 #define TP_VERSION_MAJOR 0
-#define TP_VERSION_MINOR 4
+#define TP_VERSION_MINOR 5
 #define TP_VERSION_PATCH 0
 /** Version as one number, (major << 16) | (minor << 8) | patch; compare with tp_version(). */
 #define TP_VERSION ((TP_VERSION_MAJOR << 16) | (TP_VERSION_MINOR << 8) | TP_VERSION_PATCH)
@@ -96,6 +96,9 @@ typedef struct tp_store tp_store;
 /** Build flags. */
 #define TP_BUILD_NO_EXTRAPOLATION 1u /* no outer cells: queries outside the hull return TP_ERROR_OUTSIDE */
 #define TP_BUILD_INDEX32 2u          /* force 32-bit indices even when 16 bits would do */
+/** Compact layout: the smallest blob (no neighbour section, rebuilt when the store is loaded; SH not
+    padded). Answers are the same as the default fast layout's: the same cell, weights within 1e-6. */
+#define TP_BUILD_COMPACT 4u
 
 typedef struct tp_build_options {
     uint32_t struct_size;
@@ -168,22 +171,42 @@ TP_API tp_status tp_store_probe_sh(const tp_store* store, uint32_t probe, float 
 TP_API tp_status tp_store_interpolate(const tp_store* store, const float position[3], int32_t* cell_hint,
                                       float out_sh[27]);
 
+/** Options of the batch queries. */
+typedef struct tp_batch_options {
+    uint32_t struct_size;
+    uint32_t flags;              /* TP_BATCH_* */
+    /** Threads the batch may use (0 or 1 = the calling thread only). Large batches are split into
+        this many contiguous ranges. A job system can do the same itself: batch calls on disjoint
+        ranges may run on any threads at once. */
+    uint32_t threads;
+} tp_batch_options;
+
+/** Without hints (hints == NULL), start each query from the cell the previous query of the same
+    range ended in (objects given in a spatially coherent order); by default each starts cold. */
+#define TP_BATCH_CHAIN_HINTS 1u
+
+/** Fills defaults (no flags, 1 thread) and struct_size. */
+TP_API tp_status tp_batch_options_init(tp_batch_options* options);
+
 /** Batch of count queries. positions at position_stride bytes (0 = 12); hints at hint_stride (0 = 4),
-    or NULL; out_sh at sh_stride (0 = 108). */
+    or NULL; out_sh at sh_stride (0 = 108); options may be NULL for defaults. Returns TP_OK, or
+    TP_ERROR_OUTSIDE (store without extrapolation) with the first such query named in the message
+    and zero SH for every query outside. */
 TP_API tp_status tp_store_interpolate_batch(const tp_store* store, size_t count, const float* positions,
                                             size_t position_stride, int32_t* hints, size_t hint_stride,
-                                            float* out_sh, size_t sh_stride);
+                                            float* out_sh, size_t sh_stride, const tp_batch_options* options);
 
 /** The probes and weights a query blends: out_probes are input probe indices (survivors of merges),
     unused slots have weight 0 and repeat a used probe. */
 TP_API tp_status tp_store_weights(const tp_store* store, const float position[3], int32_t* cell_hint,
                                   uint32_t out_probes[4], float out_weights[4]);
 
-/** Batch form of tp_store_weights (strides in bytes, 0 = packed: 16 for probes and weights). */
+/** Batch form of tp_store_weights (strides in bytes, 0 = packed: 16 for probes and weights); options as
+    tp_store_interpolate_batch. */
 TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, const float* positions,
                                         size_t position_stride, int32_t* hints, size_t hint_stride,
                                         uint32_t* out_probes, size_t probes_stride, float* out_weights,
-                                        size_t weights_stride);
+                                        size_t weights_stride, const tp_batch_options* options);
 
 /** Kind of the cell a query ended in. */
 #define TP_CELL_INNER 0u

@@ -1,6 +1,7 @@
 // StoreData: the store as plain arrays, between the builder (bake/) and the blob writer (core/).
 // The meaning of every field is the blob's (see store_format.h); here indices are uint32 with
-// kNone32 / kOuter32 as reserved values, SH are float, and nothing is validated.
+// kNone32 / kOuter32 as reserved values, SH are float, and nothing is validated. The writer
+// chooses the index width and lays out the flags' layout (fast or compact).
 #pragma once
 
 #include <cstdint>
@@ -9,8 +10,9 @@
 namespace tetprobe {
 
 struct StoreData {
-    uint32_t flags = 0;                 // kFlagNoExtrapolation; kFlagIndex32 forces 32-bit indices
+    uint32_t flags = 0;                 // kFlagNoExtrapolation, kFlagCompact; kFlagIndex32 forces 32-bit
     uint32_t dimension = 3;
+    uint32_t axis = 0;                  // see store_format.h
     double origin[3] = {0, 0, 0};
     uint32_t input_probe_count = 0;
     std::vector<float> positions;       // 3 per stored probe, local
@@ -20,9 +22,7 @@ struct StoreData {
     std::vector<uint32_t> input_remap;  // per input probe
     uint32_t inner_cell_count = 0;
     std::vector<uint32_t> cell_vertices;   // 4 per cell
-    std::vector<uint32_t> cell_neighbours; // 4 per cell
-    std::vector<float> inner_matrices;     // 12 per inner cell
-    std::vector<float> outer_matrices;     // 16 per outer cell
+    std::vector<uint32_t> cell_neighbours; // 4 per cell (the compact layout drops them from the blob)
     uint32_t grid[3] = {1, 1, 1};
     std::vector<uint32_t> grid_cells;      // grid[0]*grid[1]*grid[2]
     float bounds_min[3] = {0, 0, 0};       // local
