@@ -34,13 +34,13 @@ float read_float(const float* base, size_t stride, size_t record, size_t i) {
 
 ScreenedProbes screen_probe_input(const float* positions, size_t position_stride, const float* sh,
                                   size_t sh_stride, size_t count) {
-    if (count == 0) throw Error(TP_ERROR_DEGENERATE, "no probes: a store needs at least one probe");
+    if (count == 0) throw Error(Status::degenerate, "no probes: a store needs at least one probe");
     // Stored probe indices must stay below the reserved values of 32-bit indices, and cells number
     // several times the probes.
     if (count > size_t(kMaxIndex16) * 1024) {
-        throw Error(TP_ERROR_INVALID_ARGUMENT, "too many probes: " + std::to_string(count));
+        throw Error(Status::invalid_argument, "too many probes: " + std::to_string(count));
     }
-    if (!positions) throw Error(TP_ERROR_INVALID_ARGUMENT, "positions is NULL");
+    if (!positions) throw Error(Status::invalid_argument, "positions is NULL");
 
     ScreenedProbes out;
     out.positions.resize(count);
@@ -49,7 +49,7 @@ ScreenedProbes screen_probe_input(const float* positions, size_t position_stride
         for (int axis = 0; axis < 3; ++axis) {
             const float value = read_float(positions, position_stride, i, size_t(axis));
             if (!std::isfinite(value) || std::fabs(double(value)) > kMaxCoordinate) {
-                throw Error(TP_ERROR_INVALID_ARGUMENT,
+                throw Error(Status::invalid_argument,
                             "probe " + std::to_string(i) + ": position " + axis_name(axis) + " is " +
                                 describe(value) + (std::isfinite(value) ? " (magnitude above 1e30)" : ""));
             }
@@ -59,7 +59,7 @@ ScreenedProbes screen_probe_input(const float* positions, size_t position_stride
         for (size_t c = 0; c < 27; ++c) {
             const float value = read_float(sh, sh_stride, i, c);
             if (!std::isfinite(value)) {
-                throw Error(TP_ERROR_INVALID_ARGUMENT, "probe " + std::to_string(i) + ": SH coefficient " +
+                throw Error(Status::invalid_argument, "probe " + std::to_string(i) + ": SH coefficient " +
                                                            std::to_string(c) + " is " + describe(value));
             }
             out.sh[i * 27 + c] = value;
@@ -72,7 +72,7 @@ ScreenedProbes screen_probe_input(const float* positions, size_t position_stride
     }
     const double extent = (hi - lo).norm();
     if (extent > 0 && extent < kMinSetExtent) {
-        throw Error(TP_ERROR_DEGENERATE, "the probes span only " + describe(float(extent)) +
+        throw Error(Status::degenerate, "the probes span only " + describe(float(extent)) +
                                              " units: a set with distinct probes must span at least 1e-9");
     }
     return out;

@@ -23,9 +23,9 @@ struct ScreenedProbes {
     std::vector<float> sh;                   // 27 per probe (zeros when no SH was given)
 };
 
-// Copies strided positions and SH, throwing Error(TP_ERROR_DEGENERATE) for zero probes or a set
+// Copies strided positions and SH, throwing Error(Status::degenerate) for zero probes or a set
 // whose extent is positive but below kMinSetExtent, and
-// Error(TP_ERROR_INVALID_ARGUMENT) naming the probe and coordinate for NaN, Inf, |x| > kMaxCoordinate,
+// Error(Status::invalid_argument) naming the probe and coordinate for NaN, Inf, |x| > kMaxCoordinate,
 // a non-finite SH coefficient, or a count no index width can hold.
 ScreenedProbes screen_probe_input(const float* positions, size_t position_stride, const float* sh,
                                   size_t sh_stride, size_t count);

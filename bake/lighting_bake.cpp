@@ -427,11 +427,11 @@ private:
 std::vector<float> bake_lighting(const Scene& scene, const std::vector<float>& positions,
                                  const BakeSettings& settings, EffectsPlan* plan_out, BakeStats* stats) {
     const size_t count = positions.size() / 3;
-    if (count == 0) throw Error(TP_ERROR_DEGENERATE, "no probe positions to bake");
-    if (scene.empty()) throw Error(TP_ERROR_SCENE, "the scene is empty (no mesh, light or sky)");
+    if (count == 0) throw Error(Status::degenerate, "no probe positions to bake");
+    if (scene.empty()) throw Error(Status::scene, "the scene is empty (no mesh, light or sky)");
     for (float p : positions)
-        if (!std::isfinite(p)) throw Error(TP_ERROR_INVALID_ARGUMENT, "a probe position is not finite");
-    if (settings.rays == 0) throw Error(TP_ERROR_INVALID_ARGUMENT, "rays must be at least 1");
+        if (!std::isfinite(p)) throw Error(Status::invalid_argument, "a probe position is not finite");
+    if (settings.rays == 0) throw Error(Status::invalid_argument, "rays must be at least 1");
 
     const EffectsPlan plan = derive_effects_plan(scene, positions, settings.bounces, settings.culling);
     if (plan_out) *plan_out = plan;
@@ -482,7 +482,7 @@ std::vector<float> bake_lighting(const Scene& scene, const std::vector<float>& p
     }
     for (std::thread& t : pool) t.join();
     if (failure) std::rethrow_exception(failure);
-    if (cancelled) throw Error(TP_ERROR_CANCELLED, "the bake was cancelled by the progress callback");
+    if (cancelled) throw Error(Status::cancelled, "the bake was cancelled by the progress callback");
     if (stats) {
         stats->rays_cast = rays.load();
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

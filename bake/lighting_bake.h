@@ -36,7 +36,7 @@ struct BakeStats {
 // importance sampling, so a small bright emitter converges with few rays. The projection
 // solves the least-squares fit of the samples (their Gram matrix), so radiance that is itself in
 // the L2 span, such as a uniform or SH sky, comes out exact. Results do not depend on the thread
-// count. A progress callback that returns non-zero throws Error(TP_ERROR_CANCELLED).
+// count. A progress callback that returns non-zero throws Error(Status::cancelled).
 std::vector<float> bake_lighting(const Scene& scene, const std::vector<float>& positions,
                                  const BakeSettings& settings, EffectsPlan* plan_out = nullptr,
                                  BakeStats* stats = nullptr);

@@ -37,8 +37,8 @@ void check(RTCDevice device, const char* what) {
     std::lock_guard<std::mutex> lock(errors.mutex);
     std::string message = errors.first.empty() ? "Embree error " + std::to_string(int(code)) : errors.first;
     errors.first.clear();
-    if (code == RTC_ERROR_OUT_OF_MEMORY) throw Error(TP_ERROR_OUT_OF_MEMORY, std::string(what) + ": " + message);
-    throw Error(TP_ERROR_INTERNAL, std::string(what) + ": " + message);
+    if (code == RTC_ERROR_OUT_OF_MEMORY) throw Error(Status::out_of_memory, std::string(what) + ": " + message);
+    throw Error(Status::internal, std::string(what) + ": " + message);
 }
 
 RTCRay make_ray(const float origin[3], const float direction[3], float t_near, float t_far) {
@@ -58,7 +58,7 @@ RTCRay make_ray(const float origin[3], const float direction[3], float t_near, f
 
 RayCaster::RayCaster(const Scene& scene, const double origin[3]) {
     RTCDevice device = rtcNewDevice("verbose=0");
-    if (!device) throw Error(TP_ERROR_INTERNAL, "Embree could not create a device");
+    if (!device) throw Error(Status::internal, "Embree could not create a device");
     device_ = device;
     rtcSetDeviceErrorFunction(device, record_error, &device_errors());
 

@@ -20,7 +20,7 @@ struct RayHit {
 
 class RayCaster {
 public:
-    // Builds the scene of all meshes, translated by -origin. Throws Error(TP_ERROR_INTERNAL) if Embree
+    // Builds the scene of all meshes, translated by -origin. Throws Error(Status::internal) if Embree
     // fails (the message is Embree's).
     RayCaster(const Scene& scene, const double origin[3]);
     ~RayCaster();

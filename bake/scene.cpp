@@ -13,7 +13,7 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 [[noreturn]] void scene_error(const std::string& where, const std::string& what) {
-    throw Error(TP_ERROR_SCENE, where + ": " + what);
+    throw Error(Status::scene, where + ": " + what);
 }
 
 bool finite3(const float v[3]) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
@@ -61,7 +61,7 @@ void validate_material(const Material& material, const std::string& where) {
 
 Material material_from_c(const tp_material& material, const std::string& where) {
     if (material.struct_size < sizeof(tp_material))
-        throw Error(TP_ERROR_INVALID_ARGUMENT, where + ": struct_size is not set (call tp_material_init)");
+        throw Error(Status::invalid_argument, where + ": struct_size is not set (call tp_material_init)");
     Material m;
     std::copy(material.albedo, material.albedo + 3, m.albedo.begin());
     std::copy(material.emission, material.emission + 3, m.emission.begin());
@@ -133,7 +133,7 @@ uint32_t Scene::add_mesh(const float* vertices, size_t vertex_count, const uint3
 uint32_t Scene::add_light(const tp_light& in, const std::string& label) {
     const std::string where = label.empty() ? "light " + std::to_string(lights_.size()) : label;
     if (in.struct_size < sizeof(tp_light))
-        throw Error(TP_ERROR_INVALID_ARGUMENT, where + ": struct_size is not set (call tp_light_init)");
+        throw Error(Status::invalid_argument, where + ": struct_size is not set (call tp_light_init)");
     Light light;
     switch (in.type) {
         case TP_LIGHT_DIRECTIONAL: light.type = LightType::directional; break;

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "capi/tetprobe.h"
-#include "core/option_defaults.h"
+#include "capi/struct_defaults.h"
 
 #include <array>
 #include <cstdint>
@@ -66,7 +66,7 @@ public:
     // Validates and adds a mesh; returns its index. label names the mesh in messages (for example
     // "scene.json: mesh 2 ('floor')"); empty means "mesh N". NaN vertices, indices or
     // triangle materials out of range, invalid materials and meshes without a single non-degenerate
-    // triangle throw Error(TP_ERROR_SCENE); zero-area triangles are dropped and counted.
+    // triangle throw Error(Status::scene); zero-area triangles are dropped and counted.
     uint32_t add_mesh(const float* vertices, size_t vertex_count, const uint32_t* indices,
                       size_t triangle_count, const std::vector<Material>& materials,
                       const uint32_t* triangle_materials, const std::string& label = "");
@@ -93,7 +93,7 @@ private:
     std::vector<float> probes_;
 };
 
-// Checks a material, throwing Error(TP_ERROR_SCENE) naming `where` when it is invalid.
+// Checks a material, throwing Error(Status::scene) naming `where` when it is invalid.
 void validate_material(const Material& material, const std::string& where);
 
 // The defaults of tp_material_init and tp_light_init (core/option_defaults.h).

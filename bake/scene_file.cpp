@@ -31,7 +31,7 @@ namespace {
 using nlohmann::json;
 
 [[noreturn]] void fail_at(const std::string& where, const std::string& what) {
-    throw Error(TP_ERROR_SCENE, where + ": " + what);
+    throw Error(Status::scene, where + ": " + what);
 }
 
 void only_keys(const json& object, const std::string& where, std::initializer_list<const char*> keys) {
@@ -112,7 +112,7 @@ void read_obj(const std::string& path, const std::string& where, std::vector<flo
               std::vector<uint32_t>& indices) {
     {
         std::ifstream probe(path);
-        if (!probe) throw Error(TP_ERROR_IO, where + ": cannot read OBJ file '" + path + "'");
+        if (!probe) throw Error(Status::io, where + ": cannot read OBJ file '" + path + "'");
     }
     tinyobj::ObjReaderConfig config;
     config.triangulate = true;
@@ -254,14 +254,14 @@ void append_grid(std::vector<float>& probes, const json& value, const std::strin
 
 Scene load_scene_file(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(TP_ERROR_IO, "cannot read scene file '" + path + "'");
+    if (!in) throw Error(Status::io, "cannot read scene file '" + path + "'");
     std::stringstream contents;
     contents << in.rdbuf();
     json root;
     try {
         root = json::parse(contents.str());
     } catch (const json::parse_error& e) {
-        throw Error(TP_ERROR_SCENE, path + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + e.what());
+        throw Error(Status::scene, path + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + e.what());
     }
     only_keys(root, path, {"meshes", "lights", "sky", "probes", "probe_grids", "name", "description"});
 
@@ -289,9 +289,9 @@ Scene load_scene_file(const std::string& path) {
         }
         scene.set_probes(probes.data(), probes.size() / 3);
     } catch (const json::exception& e) {
-        throw Error(TP_ERROR_SCENE, path + ": " + e.what());
+        throw Error(Status::scene, path + ": " + e.what());
     }
-    if (scene.empty()) throw Error(TP_ERROR_SCENE, path + ": the scene is empty (no mesh, light or sky)");
+    if (scene.empty()) throw Error(Status::scene, path + ": the scene is empty (no mesh, light or sky)");
     return scene;
 }
 

@@ -8,8 +8,8 @@
 
 namespace tetprobe {
 
-// Loads a scene file. A file that cannot be read throws Error(TP_ERROR_IO); malformed JSON, an
-// unknown key, a value of the wrong type and every invalid value throw Error(TP_ERROR_SCENE) with a
+// Loads a scene file. A file that cannot be read throws Error(Status::io); malformed JSON, an
+// unknown key, a value of the wrong type and every invalid value throw Error(Status::scene) with a
 // message naming the file, the mesh or light and the index.
 Scene load_scene_file(const std::string& path);
 

@@ -1,6 +1,6 @@
 // The initialisers of the public structs, in both libraries (core/option_defaults.h holds the values).
 #include "capi/boundary.h"
-#include "core/option_defaults.h"
+#include "capi/struct_defaults.h"
 
 extern "C" {
 

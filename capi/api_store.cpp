@@ -43,15 +43,34 @@ void require_finite_positions(const float* positions, size_t count, size_t strid
         float p[3];
         std::memcpy(p, strided(positions, i, stride), sizeof p);
         if (!finite3(p))
-            throw Error(TP_ERROR_INVALID_ARGUMENT, "positions[" + std::to_string(i) + "] is not finite");
+            throw Error(Status::invalid_argument, "positions[" + std::to_string(i) + "] is not finite");
     }
 }
 
-tp_status report_outside(size_t outside, size_t count, size_t first) {
-    if (outside == 0) return TP_OK;
-    return fail(TP_ERROR_OUTSIDE, std::to_string(outside) + " of " + std::to_string(count) +
-                                      " positions are outside the probes' hull (store built without extrapolation); first at index " +
-                                      std::to_string(first));
+tp_status report_outside(Status status, size_t first) {
+    if (status == Status::ok) return TP_OK;
+    return fail(status, "positions are outside the probes' hull (store built without extrapolation); the first at index " +
+                            std::to_string(first) + " (their SH and weights are zero)");
+}
+
+tp_batch_options default_batch_options() {
+    tp_batch_options options{};
+    options.struct_size = sizeof options;
+    options.threads = 1;
+    return options;
+}
+
+// The run time's batch settings from the caller's options (NULL = defaults).
+BatchSettings batch_settings(const tp_batch_options* options) {
+    BatchSettings settings;
+    if (!options) return settings;
+    if (options->struct_size < 3 * sizeof(uint32_t))
+        throw Error(Status::invalid_argument, "options->struct_size is not set (use tp_batch_options_init)");
+    if (options->flags & ~uint32_t(TP_BATCH_CHAIN_HINTS))
+        throw Error(Status::invalid_argument, "unknown batch flags " + std::to_string(options->flags));
+    settings.chain_hints = (options->flags & TP_BATCH_CHAIN_HINTS) != 0;
+    settings.threads = options->threads > 1 ? options->threads : 1;
+    return settings;
 }
 
 const char* const kOutsideMessage = "position is outside the probes' hull (store built without extrapolation)";
@@ -69,7 +88,7 @@ void write_all(int fd, const uint8_t* data, size_t size, const char* path) {
         const ssize_t written = ::write(fd, data, size);
         if (written < 0) {
             if (errno == EINTR) continue;
-            throw Error(TP_ERROR_IO, system_error("cannot write", path));
+            throw Error(Status::io, system_error("cannot write", path));
         }
         data += written;
         size -= size_t(written);
@@ -78,7 +97,7 @@ void write_all(int fd, const uint8_t* data, size_t size, const char* path) {
 
 std::vector<uint8_t> read_file(const char* path) {
     FILE* file = std::fopen(path, "rb");
-    if (!file) throw Error(TP_ERROR_IO, system_error("cannot open", path));
+    if (!file) throw Error(Status::io, system_error("cannot open", path));
     std::vector<uint8_t> bytes;
     uint8_t buffer[1 << 16];
     for (;;) {
@@ -88,7 +107,7 @@ std::vector<uint8_t> read_file(const char* path) {
     }
     const bool failed = std::ferror(file) != 0;
     std::fclose(file);
-    if (failed) throw Error(TP_ERROR_IO, std::string("cannot read '") + path + "'");
+    if (failed) throw Error(Status::io, std::string("cannot read '") + path + "'");
     return bytes;
 }
 
@@ -99,14 +118,14 @@ void write_file_atomically(const char* path, const uint8_t* data, size_t size) {
     std::vector<char> name(temp.begin(), temp.end());
     name.push_back('\0');
     const int fd = ::mkstemp(name.data());
-    if (fd < 0) throw Error(TP_ERROR_IO, system_error("cannot create a temporary file for", path));
+    if (fd < 0) throw Error(Status::io, system_error("cannot create a temporary file for", path));
     bool open = true;
     try {
         write_all(fd, data, size, path);
-        if (::fchmod(fd, 0644) != 0) throw Error(TP_ERROR_IO, system_error("cannot set permissions of", path));
-        if (::fsync(fd) != 0) throw Error(TP_ERROR_IO, system_error("cannot flush", path));
+        if (::fchmod(fd, 0644) != 0) throw Error(Status::io, system_error("cannot set permissions of", path));
+        if (::fsync(fd) != 0) throw Error(Status::io, system_error("cannot flush", path));
         open = false;
-        if (::close(fd) != 0) throw Error(TP_ERROR_IO, system_error("cannot close", path));
+        if (::close(fd) != 0) throw Error(Status::io, system_error("cannot close", path));
     } catch (...) {
         if (open) ::close(fd);
         ::unlink(name.data());
@@ -115,7 +134,7 @@ void write_file_atomically(const char* path, const uint8_t* data, size_t size) {
     if (std::rename(name.data(), path) != 0) {
         const std::string message = system_error("cannot rename the temporary file onto", path);
         ::unlink(name.data());
-        throw Error(TP_ERROR_IO, message);
+        throw Error(Status::io, message);
     }
     // Make the rename itself durable (best effort: some file systems refuse fsync on directories).
     std::string directory(path);
@@ -221,8 +240,7 @@ TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info) {
     full.inner_cells = h.inner_cell_count;
     full.outer_cells = h.cell_count - h.inner_cell_count;
     full.index_bits = (h.flags & kFlagIndex32) ? 32 : 16;
-    full.flags = ((h.flags & kFlagNoExtrapolation) ? TP_BUILD_NO_EXTRAPOLATION : 0u) |
-                 ((h.flags & kFlagIndex32) ? TP_BUILD_INDEX32 : 0u);
+    full.flags = h.flags;  // the same bits as TP_BUILD_* (boundary.h)
     for (int k = 0; k < 3; ++k) {
         full.grid[k] = h.grid[k];
         full.origin[k] = h.origin[k];
@@ -255,17 +273,26 @@ TP_API tp_status tp_store_interpolate(const tp_store* store, const float positio
     TP_REQUIRE_NOT_NULL(position);
     TP_REQUIRE_NOT_NULL(out_sh);
     if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
-    const tp_status status = store_of(store).interpolate(position, cell_hint, out_sh);
-    if (status != TP_OK) return fail(status, kOutsideMessage);
+    const Status status = store_of(store).interpolate(position, cell_hint, out_sh);
+    if (status != Status::ok) return fail(status, kOutsideMessage);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_batch_options_init(tp_batch_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(options);
+    *options = default_batch_options();
     return TP_OK;
     TP_API_END
 }
 
 TP_API tp_status tp_store_interpolate_batch(const tp_store* store, size_t count, const float* positions,
                                             size_t position_stride, int32_t* hints, size_t hint_stride,
-                                            float* out_sh, size_t sh_stride) {
+                                            float* out_sh, size_t sh_stride, const tp_batch_options* options) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(store);
+    const BatchSettings settings = batch_settings(options);
     if (count == 0) return TP_OK;
     TP_REQUIRE_NOT_NULL(positions);
     TP_REQUIRE_NOT_NULL(out_sh);
@@ -273,18 +300,10 @@ TP_API tp_status tp_store_interpolate_batch(const tp_store* store, size_t count,
     hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
     sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
     require_finite_positions(positions, count, position_stride);
-    const Store& s = store_of(store);
-    size_t outside = 0, first_outside = 0;
-    for (size_t i = 0; i < count; ++i) {
-        float p[3], sh[27];
-        std::memcpy(p, strided(positions, i, position_stride), sizeof p);
-        int32_t hint = -1;
-        if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
-        if (s.interpolate(p, &hint, sh) != TP_OK && outside++ == 0) first_outside = i;
-        if (hints) std::memcpy(strided(hints, i, hint_stride), &hint, sizeof hint);
-        std::memcpy(strided(out_sh, i, sh_stride), sh, sizeof sh);
-    }
-    return report_outside(outside, count, first_outside);
+    size_t first_outside = count;
+    const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
+                                                            out_sh, sh_stride, settings, &first_outside);
+    return report_outside(status, first_outside);
     TP_API_END
 }
 
@@ -300,7 +319,7 @@ TP_API tp_status tp_store_weights(const tp_store* store, const float position[3]
     const Location loc = s.locate(position, cell_hint ? *cell_hint : -1);
     if (cell_hint) *cell_hint = loc.cell;
     to_input_probes(s, loc, out_probes, out_weights);
-    if (loc.status != TP_OK) return fail(loc.status, kOutsideMessage);
+    if (loc.status != Status::ok) return fail(loc.status, kOutsideMessage);
     return TP_OK;
     TP_API_END
 }
@@ -308,9 +327,10 @@ TP_API tp_status tp_store_weights(const tp_store* store, const float position[3]
 TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, const float* positions,
                                         size_t position_stride, int32_t* hints, size_t hint_stride,
                                         uint32_t* out_probes, size_t probes_stride, float* out_weights,
-                                        size_t weights_stride) {
+                                        size_t weights_stride, const tp_batch_options* options) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(store);
+    const BatchSettings settings = batch_settings(options);
     if (count == 0) return TP_OK;
     TP_REQUIRE_NOT_NULL(positions);
     TP_REQUIRE_NOT_NULL(out_probes);
@@ -321,22 +341,14 @@ TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, con
     weights_stride = resolve_stride(weights_stride, 4 * sizeof(float), "weights_stride");
     require_finite_positions(positions, count, position_stride);
     const Store& s = store_of(store);
-    size_t outside = 0, first_outside = 0;
-    for (size_t i = 0; i < count; ++i) {
-        float p[3];
-        std::memcpy(p, strided(positions, i, position_stride), sizeof p);
-        int32_t hint = -1;
-        if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
-        const Location loc = s.locate(p, hint);
-        if (loc.status != TP_OK && outside++ == 0) first_outside = i;
-        if (hints) std::memcpy(strided(hints, i, hint_stride), &loc.cell, sizeof loc.cell);
-        uint32_t probes[4];
-        float weights[4];
-        to_input_probes(s, loc, probes, weights);
-        std::memcpy(strided(out_probes, i, probes_stride), probes, sizeof probes);
-        std::memcpy(strided(out_weights, i, weights_stride), weights, sizeof weights);
+    size_t first_outside = count;
+    const Status status = s.weights_batch(count, positions, position_stride, hints, hint_stride, out_probes,
+                                          probes_stride, out_weights, weights_stride, settings, &first_outside);
+    for (size_t i = 0; i < count; ++i) {  // stored probes to the input probes the caller knows
+        uint32_t* probes = strided(out_probes, i, probes_stride);
+        for (int k = 0; k < 4; ++k) probes[k] = s.probe_source(probes[k]);
     }
-    return report_outside(outside, count, first_outside);
+    return report_outside(status, first_outside);
     TP_API_END
 }
 
@@ -356,13 +368,13 @@ TP_API tp_status tp_store_locate(const tp_store* store, const float position[3],
     std::memset(&full, 0, sizeof full);
     full.struct_size = location->struct_size;
     full.cell = loc.cell;
-    full.cell_kind = loc.kind;
+    full.cell_kind = uint32_t(loc.kind);
     full.steps = loc.steps;
     full.fallback = loc.fallback ? 1u : 0u;
     to_input_probes(s, loc, full.probes, full.weights);
     full.t = loc.t;
     copy_fitting_fields(location, full, location->struct_size);
-    if (loc.status != TP_OK) return fail(loc.status, kOutsideMessage);
+    if (loc.status != Status::ok) return fail(loc.status, kOutsideMessage);
     return TP_OK;
     TP_API_END
 }

@@ -4,6 +4,8 @@
 
 #include "capi/tetprobe.h"
 #include "core/error.h"
+#include "core/store.h"
+#include "core/store_format.h"
 
 #include <new>
 #include <string>
@@ -14,6 +16,32 @@ namespace tetprobe {
 tp_status fail(tp_status status, const std::string& message);
 void clear_error();
 
+// The one translation of the run time's statuses and flags into the C ABI's: the values are equal.
+#define TP_SAME_VALUE(c, core) static_assert(int(c) == int(core), #c " must equal " #core)
+TP_SAME_VALUE(TP_OK, Status::ok);
+TP_SAME_VALUE(TP_ERROR_INVALID_ARGUMENT, Status::invalid_argument);
+TP_SAME_VALUE(TP_ERROR_OUT_OF_MEMORY, Status::out_of_memory);
+TP_SAME_VALUE(TP_ERROR_IO, Status::io);
+TP_SAME_VALUE(TP_ERROR_INVALID_BLOB, Status::invalid_blob);
+TP_SAME_VALUE(TP_ERROR_VERSION, Status::version);
+TP_SAME_VALUE(TP_ERROR_DEGENERATE, Status::degenerate);
+TP_SAME_VALUE(TP_ERROR_TETGEN, Status::tetgen);
+TP_SAME_VALUE(TP_ERROR_CANCELLED, Status::cancelled);
+TP_SAME_VALUE(TP_ERROR_OUTSIDE, Status::outside);
+TP_SAME_VALUE(TP_ERROR_SCENE, Status::scene);
+TP_SAME_VALUE(TP_ERROR_UNSUPPORTED, Status::unsupported);
+TP_SAME_VALUE(TP_ERROR_BUFFER_TOO_SMALL, Status::buffer_too_small);
+TP_SAME_VALUE(TP_ERROR_INTERNAL, Status::internal);
+TP_SAME_VALUE(TP_BUILD_NO_EXTRAPOLATION, kFlagNoExtrapolation);
+TP_SAME_VALUE(TP_BUILD_INDEX32, kFlagIndex32);
+TP_SAME_VALUE(TP_BUILD_COMPACT, kFlagCompact);
+TP_SAME_VALUE(TP_CELL_INNER, CellKind::inner);
+TP_SAME_VALUE(TP_CELL_OUTER, CellKind::outer);
+#undef TP_SAME_VALUE
+
+inline tp_status to_tp_status(Status status) { return static_cast<tp_status>(status); }
+inline tp_status fail(Status status, const std::string& message) { return fail(to_tp_status(status), message); }
+
 }  // namespace tetprobe
 
 #define TP_API_BEGIN                                                                                  \
@@ -23,7 +51,7 @@ void clear_error();
 #define TP_API_END                                                                                    \
     }                                                                                                 \
     catch (const ::tetprobe::Error& e) {                                                              \
-        return ::tetprobe::fail(e.status(), e.what());                                                \
+        return ::tetprobe::fail(::tetprobe::to_tp_status(e.status()), e.what());                                                \
     }                                                                                                 \
     catch (const std::bad_alloc&) {                                                                   \
         return ::tetprobe::fail(TP_ERROR_OUT_OF_MEMORY, "out of memory");                             \

@@ -10,20 +10,20 @@
 
 namespace tetprobe {
 
-// The stride to use; throws Error(TP_ERROR_INVALID_ARGUMENT) naming the parameter when it is too small.
+// The stride to use; throws Error(Status::invalid_argument) naming the parameter when it is too small.
 inline size_t resolve_stride(size_t stride, size_t element, const char* name) {
     if (stride == 0) return element;
     if (stride < element)
-        throw Error(TP_ERROR_INVALID_ARGUMENT, std::string(name) + " (" + std::to_string(stride) +
+        throw Error(Status::invalid_argument, std::string(name) + " (" + std::to_string(stride) +
                                                    ") is smaller than one element (" + std::to_string(element) +
                                                    " bytes; use 0 for packed)");
     return stride;
 }
 
-// Throws Error(TP_ERROR_INVALID_ARGUMENT) when count records of record_bytes at stride overflow size_t.
+// Throws Error(Status::invalid_argument) when count records of record_bytes at stride overflow size_t.
 inline void require_addressable(size_t count, size_t stride, size_t record_bytes, const char* what) {
     if (count > 0 && (count - 1) > (SIZE_MAX - record_bytes) / stride)
-        throw Error(TP_ERROR_INVALID_ARGUMENT, std::string(what) + ": count times stride overflows");
+        throw Error(Status::invalid_argument, std::string(what) + ": count times stride overflows");
 }
 
 }  // namespace tetprobe

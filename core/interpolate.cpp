@@ -1,24 +1,123 @@
-// Store::interpolate: locate, then blend the four probes' half SH (the dispatched F16C path or the
-// portable one, see half.h).
+// Store::interpolate and the batches: locate, then blend the four probes' half SH (the dispatched
+// F16C path or the portable one, see half.h). Batches split into ranges, one per thread.
 #include "core/half.h"
+#include "core/locate.h"
 #include "core/store.h"
 #include "core/store_impl.h"
 
 #include <algorithm>
+#include <cstring>
+#include <thread>
+#include <vector>
 
 namespace tetprobe {
 
-tp_status Store::interpolate(const float world_position[3], int32_t* hint, float out_sh[27]) const {
-    const Location loc = impl_->locate(*impl_, world_position, hint ? *hint : -1);
+namespace {
+
+void blend(const Store::Impl& s, const Location& loc, float out_sh[27]) {
+    const uint16_t* sh[4];
+    for (int k = 0; k < 4; ++k) sh[k] = s.sh + size_t(loc.probes[k]) * s.sh_halves;
+    blend_sh_halves(sh, loc.weights, out_sh);
+}
+
+template <class T>
+T* strided(T* base, size_t i, size_t stride) {
+    using Byte = typename std::conditional<std::is_const<T>::value, const uint8_t, uint8_t>::type;
+    return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + i * stride);
+}
+
+// Runs query(i, hint) -> Location for i in [begin, end), reading and writing the hints, and
+// returns the first index that was outside (or end).
+template <class Answer>
+size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* positions, size_t position_stride,
+                 int32_t* hints, size_t hint_stride, bool chain_hints, Answer answer) {
+    size_t first_outside = end;
+    int32_t chained = -1;
+    for (size_t i = begin; i < end; ++i) {
+        float world[3], q[3];
+        std::memcpy(world, strided(positions, i, position_stride), sizeof world);
+        local_position(s, world, q);
+        int32_t hint = chain_hints ? chained : -1;
+        if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
+        const Location loc = locate_local(s, q, hint);
+        chained = loc.cell;
+        if (hints) std::memcpy(strided(hints, i, hint_stride), &loc.cell, sizeof loc.cell);
+        if (loc.status != Status::ok && first_outside == end) first_outside = i;
+        answer(i, loc);
+    }
+    return first_outside;
+}
+
+// Smallest batch worth a thread of its own (spawning one costs tens of microseconds).
+constexpr size_t kQueriesPerThread = 4096;
+
+template <class Answer>
+Status run_batch(const Store::Impl& s, size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                 size_t hint_stride, const BatchSettings& settings, size_t* first_outside, Answer answer) {
+    const size_t threads =
+        std::max<size_t>(1, std::min<size_t>(settings.threads, (count + kQueriesPerThread - 1) / kQueriesPerThread));
+    std::vector<size_t> outside(threads, count);
+    auto range = [&](size_t t) {
+        const size_t begin = count * t / threads, end = count * (t + 1) / threads;
+        const size_t first = run_range(s, begin, end, positions, position_stride, hints, hint_stride,
+                                       settings.chain_hints, answer);
+        outside[t] = first < end ? first : count;
+    };
+    if (threads == 1) {
+        range(0);
+    } else {
+        std::vector<std::thread> pool;
+        pool.reserve(threads - 1);
+        for (size_t t = 1; t < threads; ++t) pool.emplace_back(range, t);
+        range(0);
+        for (std::thread& thread : pool) thread.join();
+    }
+    const size_t first = *std::min_element(outside.begin(), outside.end());
+    if (first_outside) *first_outside = first;
+    return first < count ? Status::outside : Status::ok;
+}
+
+}  // namespace
+
+Status Store::interpolate(const float world_position[3], int32_t* hint, float out_sh[27]) const {
+    float q[3];
+    local_position(*impl_, world_position, q);
+    const Location loc = locate_local(*impl_, q, hint ? *hint : -1);
     if (hint) *hint = loc.cell;
-    if (loc.status != TP_OK) {
+    if (loc.status != Status::ok) {
         std::fill(out_sh, out_sh + 27, 0.0f);
         return loc.status;
     }
-    const uint16_t* sh[4];
-    for (int k = 0; k < 4; ++k) sh[k] = impl_->sh + size_t(loc.probes[k]) * 27;
-    blend_sh_halves(sh, loc.weights, out_sh);
-    return TP_OK;
+    blend(*impl_, loc, out_sh);
+    return Status::ok;
+}
+
+Status Store::interpolate_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                                size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,
+                                size_t* first_outside) const {
+    const Impl& s = *impl_;
+    return run_batch(s, count, positions, position_stride, hints, hint_stride, settings, first_outside,
+                     [&](size_t i, const Location& loc) {
+                         float* out = strided(out_sh, i, sh_stride);
+                         if (loc.status != Status::ok)
+                             std::fill(out, out + 27, 0.0f);
+                         else
+                             blend(s, loc, out);
+                     });
+}
+
+Status Store::weights_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                            size_t hint_stride, uint32_t* out_probes, size_t probes_stride, float* out_weights,
+                            size_t weights_stride, const BatchSettings& settings, size_t* first_outside) const {
+    return run_batch(*impl_, count, positions, position_stride, hints, hint_stride, settings, first_outside,
+                     [&](size_t i, const Location& loc) {
+                         uint32_t* probes = strided(out_probes, i, probes_stride);
+                         float* weights = strided(out_weights, i, weights_stride);
+                         for (int k = 0; k < 4; ++k) {
+                             probes[k] = loc.status == Status::ok ? loc.probes[k] : 0;
+                             weights[k] = loc.status == Status::ok ? loc.weights[k] : 0.0f;
+                         }
+                     });
 }
 
 }  // namespace tetprobe

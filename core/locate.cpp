@@ -1,9 +1,16 @@
-// The walk (a visibility walk over cell adjacency, Cupisz 2012). Inner cells decide in float from
-// their barycentric matrices, in the store's local frame; outer cells solve their cubic and
-// weigh the moved hull triangle in double. The walk never steps straight back to the cell it came
-// from, and after a step cap it hands the decision to an exhaustive search in double.
+// The walk (a visibility walk over cell adjacency, Cupisz 2012). An inner cell holds the query when
+// no facet's orientation with the query is negative; each orientation's sign is exact (a filtered
+// double evaluation, the exact one where the filter cannot decide), so the walk needs no tolerance:
+// on a Delaunay tessellation a walk that only steps across facets the point lies strictly beyond
+// terminates (Edelsbrunner's acyclicity theorem), never steps straight back, and ends in a cell
+// that holds the point. The weights are the orientations divided by their sum, so a query exactly at
+// a probe weighs that probe 1 and the others exactly 0. Outer cells solve their polynomial in double
+// and judge the moved hull facet's weights; where their sweeps disagree far out, the outer cells are
+// searched exhaustively.
 #include "core/locate.h"
 
+#include "core/orientation.h"
+#include "core/plane_projection.h"
 #include "core/polynomial_roots.h"
 
 #include <cmath>
@@ -14,57 +21,169 @@ namespace tetprobe {
 namespace {
 
 constexpr uint32_t kNoCell = 0xFFFFFFFFu;
-constexpr uint32_t kRecentCells = 8;
-constexpr double kInsideToleranceD = double(kInsideTolerance);
-// 32 float steps (2^-24 each) of a barycentric's terms: the rows' own rounding, the products and the
-// sums, with room to spare.
-constexpr double kRowRounding = 32.0 / 16777216.0;
+constexpr uint32_t kRecentOuterCells = 8;
+// Bounds of the permanents below: 6 (resp. 2) products of the largest |differences|, with room for
+// the rounding of that bound itself.
+constexpr double kOrient3dBoundScale = 6.000001 * kOrient3dErrorFactor;
+constexpr double kOrient2dBoundScale = 2.000001 * kOrient2dErrorFactor;
 
 template <class Index>
-struct IndexTraits;
-template <>
-struct IndexTraits<uint16_t> {
-    static constexpr uint32_t none = kNone16;
-};
-template <>
-struct IndexTraits<uint32_t> {
-    static constexpr uint32_t none = kNone32;
-};
+constexpr uint32_t none_index() {
+    return sizeof(Index) == 2 ? kNone16 : kNone32;
+}
 
-// Typed views of a store's cell arrays.
+// Typed view of a store's cells.
 template <class Index>
-struct CellView {
+struct Cells {
     const Store::Impl& s;
-    const Index* vertices;
-    const Index* neighbours;
-    explicit CellView(const Store::Impl& store)
-        : s(store),
-          vertices(static_cast<const Index*>(store.cell_vertices)),
-          neighbours(static_cast<const Index*>(store.cell_neighbours)) {}
+    const CellRecord<Index>* records;
+    explicit Cells(const Store::Impl& store) : s(store), records(static_cast<const CellRecord<Index>*>(store.cells)) {}
 
-    uint32_t vertex(uint32_t cell, uint32_t slot) const { return vertices[4 * size_t(cell) + slot]; }
+    uint32_t vertex(uint32_t cell, uint32_t slot) const { return records[cell].vertices[slot]; }
     uint32_t neighbour(uint32_t cell, uint32_t slot) const {
-        const uint32_t n = neighbours[4 * size_t(cell) + slot];
-        return n == IndexTraits<Index>::none ? kNoCell : n;
+        const uint32_t n = records[cell].neighbours[slot];
+        return n == none_index<Index>() ? kNoCell : n;
     }
-    uint32_t start_cell(const double p[3]) const {
+    const float* position(uint32_t probe) const { return s.positions + 3 * size_t(probe); }
+    const float* normal(uint32_t probe) const { return s.normals + 3 * size_t(probe); }
+
+    uint32_t start_cell(const float p[3]) const {
         const StoreHeader& h = s.header;
-        uint32_t index[3];
-        for (int k = 0; k < 3; ++k) {
+        size_t slot = 0;
+        for (int k = 2; k >= 0; --k) {
             const double extent = double(h.bounds_max[k]) - double(h.bounds_min[k]);
-            index[k] = 0;
+            uint32_t index = 0;
             if (extent > 0) {
-                const double f = (p[k] - double(h.bounds_min[k])) / extent * double(h.grid[k]);
+                const double f = (double(p[k]) - double(h.bounds_min[k])) / extent * double(h.grid[k]);
                 if (f >= double(h.grid[k]))
-                    index[k] = h.grid[k] - 1;
+                    index = h.grid[k] - 1;
                 else if (f > 0)
-                    index[k] = uint32_t(f);  // NaN fails both tests and stays 0
+                    index = uint32_t(f);
             }
+            slot = slot * h.grid[k] + index;
         }
-        const size_t slot = (size_t(index[2]) * h.grid[1] + index[1]) * h.grid[0] + index[0];
         return static_cast<const Index*>(s.grid_cells)[slot];
     }
 };
+
+// An inner cell seen from the query: the orientations D[k] of the query with the facet opposite
+// slot k (the cell with vertex k replaced by the query), their exact signs, and the verdict.
+struct InnerView {
+    enum Verdict { holds, flat, leaves } verdict;
+    int exit = -1;     // leaves: the slot of the most negative orientation
+    double D[4] = {0, 0, 0, 0};
+    int sign[4] = {0, 0, 0, 0};
+};
+
+template <class Index>
+InnerView view_inner_cell(const Cells<Index>& cells, uint32_t cell, const float q[3]) {
+    const Store::Impl& s = cells.s;
+    const uint32_t d = s.dimension;
+    InnerView v;
+    const float* P[4];
+    for (uint32_t k = 0; k <= d; ++k) P[k] = cells.position(cells.vertex(cell, k));
+    if (d == 3) {
+        double a[4][3];
+        double mx = 0, my = 0, mz = 0;
+        for (int i = 0; i < 4; ++i) {
+            a[i][0] = double(P[i][0]) - double(q[0]);
+            a[i][1] = double(P[i][1]) - double(q[1]);
+            a[i][2] = double(P[i][2]) - double(q[2]);
+            mx = std::fmax(mx, std::fabs(a[i][0]));
+            my = std::fmax(my, std::fabs(a[i][1]));
+            mz = std::fmax(mz, std::fabs(a[i][2]));
+        }
+        auto minor = [&](int i, int j) { return a[i][0] * a[j][1] - a[j][0] * a[i][1]; };
+        const double m01 = minor(0, 1), m02 = minor(0, 2), m03 = minor(0, 3);
+        const double m12 = minor(1, 2), m13 = minor(1, 3), m23 = minor(2, 3);
+        v.D[0] = a[1][2] * m23 - a[2][2] * m13 + a[3][2] * m12;
+        v.D[1] = -(a[0][2] * m23 - a[2][2] * m03 + a[3][2] * m02);
+        v.D[2] = a[0][2] * m13 - a[1][2] * m03 + a[3][2] * m01;
+        v.D[3] = -(a[0][2] * m12 - a[1][2] * m02 + a[2][2] * m01);
+        const double bound = kOrient3dBoundScale * (mx * my * mz);
+        for (int k = 0; k < 4; ++k) {
+            if (v.D[k] > bound) {
+                v.sign[k] = 1;
+            } else if (v.D[k] < -bound) {
+                v.sign[k] = -1;
+            } else {
+                const float* w[4] = {P[0], P[1], P[2], P[3]};
+                w[k] = q;
+                v.sign[k] = orient3d_exact(w[0], w[1], w[2], w[3]);
+            }
+        }
+    } else if (d == 2) {
+        float uv[3][2], quv[2];
+        project_to_plane(q, s.axis, quv);
+        double a[3][2];
+        double mu = 0, mv = 0;
+        for (int i = 0; i < 3; ++i) {
+            project_to_plane(P[i], s.axis, uv[i]);
+            a[i][0] = double(uv[i][0]) - double(quv[0]);
+            a[i][1] = double(uv[i][1]) - double(quv[1]);
+            mu = std::fmax(mu, std::fabs(a[i][0]));
+            mv = std::fmax(mv, std::fabs(a[i][1]));
+        }
+        auto cross = [&](int i, int j) { return a[i][0] * a[j][1] - a[j][0] * a[i][1]; };
+        v.D[0] = cross(1, 2);
+        v.D[1] = cross(2, 0);
+        v.D[2] = cross(0, 1);
+        const double bound = kOrient2dBoundScale * (mu * mv);
+        for (int k = 0; k < 3; ++k) {
+            if (v.D[k] > bound) {
+                v.sign[k] = 1;
+            } else if (v.D[k] < -bound) {
+                v.sign[k] = -1;
+            } else {
+                const float* w[3] = {uv[0], uv[1], uv[2]};
+                w[k] = quv;
+                v.sign[k] = orient2d_exact(w[0], w[1], w[2]);
+            }
+        }
+    } else if (d == 1) {
+        // The difference of two floats in double has the exact sign.
+        v.D[0] = double(P[1][s.axis]) - double(q[s.axis]);
+        v.D[1] = double(q[s.axis]) - double(P[0][s.axis]);
+        for (int k = 0; k < 2; ++k) v.sign[k] = v.D[k] > 0 ? 1 : (v.D[k] < 0 ? -1 : 0);
+    } else {
+        v.D[0] = 1;
+        v.sign[0] = 1;
+    }
+    bool inside = true, any_positive = false;
+    double most_negative = std::numeric_limits<double>::infinity();
+    for (uint32_t k = 0; k <= d; ++k) {
+        if (v.sign[k] < 0) {
+            inside = false;
+            // The most negative computed value among the exactly negative ones (any would do).
+            if (v.exit < 0 || v.D[k] < most_negative) most_negative = v.D[k], v.exit = int(k);
+        }
+        any_positive |= v.sign[k] > 0;
+    }
+    v.verdict = inside ? (any_positive ? InnerView::holds : InnerView::flat) : InnerView::leaves;
+    return v;
+}
+
+// Weights of a held point: the orientations over their sum, those of exact sign 0 exactly 0.
+template <class Index>
+void set_inner_weights(const Cells<Index>& cells, uint32_t cell, const InnerView& v, Location& loc) {
+    const uint32_t used = cells.s.dimension + 1;
+    double w[4] = {0, 0, 0, 0}, sum = 0;
+    for (uint32_t k = 0; k < used; ++k) {
+        w[k] = v.sign[k] > 0 ? std::fmax(v.D[k], 0.0) : 0.0;
+        sum += w[k];
+    }
+    if (!(sum > 0)) {  // every positive orientation rounded to zero: share equally among them
+        sum = 0;
+        for (uint32_t k = 0; k < used; ++k) sum += w[k] = v.sign[k] > 0 ? 1.0 : 0.0;
+    }
+    const double scale = 1.0 / sum;
+    for (uint32_t k = 0; k < 4; ++k) {
+        loc.probes[k] = cells.vertex(cell, k < used ? k : 0);
+        loc.weights[k] = k < used ? float(w[k] * scale) : 0.0f;
+    }
+    loc.cell = int32_t(cell);
+    loc.kind = CellKind::inner;
+}
 
 struct Vec3 {
     double x, y, z;
@@ -74,15 +193,8 @@ Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 Vec3 operator*(double s, Vec3 a) { return {s * a.x, s * a.y, s * a.z}; }
 double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-
-Vec3 probe_position(const Store::Impl& s, uint32_t probe) {
-    const float* p = s.positions + 3 * size_t(probe);
-    return {p[0], p[1], p[2]};
-}
-Vec3 probe_normal(const Store::Impl& s, uint32_t probe) {
-    const float* n = s.normals + 3 * size_t(probe);
-    return {n[0], n[1], n[2]};
-}
+double det(Vec3 a, Vec3 b, Vec3 c) { return dot(a, cross(b, c)); }
+double cross2(Vec3 a, Vec3 b) { return a.x * b.y - a.y * b.x; }
 
 // Barycentric weights of p on a segment (projected onto its line); NaN if degenerate.
 void segment_weights(Vec3 a, Vec3 b, Vec3 p, double w[2]) {
@@ -105,83 +217,100 @@ void triangle_weights(Vec3 a, Vec3 b, Vec3 c, Vec3 p, double w[3]) {
     w[2] = 1.0 - w[0] - w[1];
 }
 
-// Barycentric weights of p in a tetrahedron; NaN if degenerate.
-void tetrahedron_weights(Vec3 a, Vec3 b, Vec3 c, Vec3 d, Vec3 p, double w[4]) {
-    const Vec3 e1 = b - a, e2 = c - a, e3 = d - a, q = p - a;
-    const double volume = dot(e1, cross(e2, e3));
-    if (volume == 0.0) {
-        w[0] = w[1] = w[2] = w[3] = std::numeric_limits<double>::quiet_NaN();
-        return;
-    }
-    w[1] = dot(q, cross(e2, e3)) / volume;
-    w[2] = dot(e1, cross(q, e3)) / volume;
-    w[3] = dot(e1, cross(e2, q)) / volume;
-    w[0] = 1.0 - w[1] - w[2] - w[3];
-}
-
-double minimum(const double* w, int n) {
+double minimum(const double* w, uint32_t n) {
     double m = w[0];
-    for (int k = 1; k < n; ++k) m = w[k] < m ? w[k] : m;
+    for (uint32_t k = 1; k < n; ++k) m = w[k] < m ? w[k] : m;
     return m;
 }
 
-bool all_finite(const double* w, int n) {
-    for (int k = 0; k < n; ++k)
+bool all_finite(const double* w, uint32_t n) {
+    for (uint32_t k = 0; k < n; ++k)
         if (!std::isfinite(w[k])) return false;
     return true;
 }
 
-// An outer cell seen from p: the polynomial's coefficients, and the moved hull simplex that holds p.
+// An outer cell seen from the query: whether the query is strictly beyond its hull facet (exact),
+// and the moved facet that holds it.
 struct OuterView {
-    bool finite = true;
-    double f0 = 0;        // f(0) = c3: > 0 strictly beyond the hull facet
-    bool holds = false;   // a parameter t >= 0 puts p in the plane (line) of the moved facet
+    bool beyond = false;  // strictly beyond the hull facet (exact sign)
+    bool holds = false;   // a parameter t >= 0 puts the query in the plane (line) of the moved facet
     bool judged = false;  // weights are available (at that t, or at the guess when no t exists)
     double t = 0;
     double weights[3] = {0, 0, 0};  // over slots 0..d-1
 };
 
-// came_from_base: the walk arrived from the inner cell below, so a point on (or numerically just
-// inside) the hull facet is judged here at t = 0 instead of being sent back. guess_t (>= 0, or
-// negative for none): where to judge p when no t >= 0 exists, only to choose the way out.
+// The point in the frame the outer cells are judged in: the store's local frame, or for a flat
+// set its plane coordinates (z = 0), where the inner cells are decided too.
 template <class Index>
-OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, bool came_from_base, double guess_t) {
+Vec3 judged_point(const Cells<Index>& cells, const float p[3]) {
+    if (cells.s.dimension != 2) return {p[0], p[1], p[2]};
+    float uv[2];
+    project_to_plane(p, cells.s.axis, uv);
+    return {uv[0], uv[1], 0.0};
+}
+
+// guess_t (>= 0, or negative for none): where to judge the query when no t >= 0 exists, only to
+// choose the way out.
+template <class Index>
+OuterView view_outer_cell(const Cells<Index>& cells, uint32_t cell, const float q[3], double guess_t) {
     const Store::Impl& s = cells.s;
     const uint32_t d = s.dimension;
-    const float* m = s.outer_matrices + 16 * size_t(cell - s.inner_cell_count);
-    const Vec3 q = p - probe_position(s, cells.vertex(cell, 0));  // rows are relative to slot 0
-    double c[4];
-    for (int r = 0; r < 4; ++r) c[r] = m[4 * r] * q.x + m[4 * r + 1] * q.y + m[4 * r + 2] * q.z + double(m[4 * r + 3]);
     OuterView v;
-    v.finite = all_finite(c, 4);
-    v.f0 = c[3];
-    if (!v.finite || (c[3] <= 0 && !came_from_base)) return v;  // not beyond the facet: the inner cell decides
+    const uint32_t first = cells.vertex(cell, 0);
     if (d == 1) {
-        v.holds = v.judged = true;
-        v.t = c[3] > 0 ? c[3] : 0.0;
+        const float end = cells.position(first)[s.axis], direction = cells.normal(first)[s.axis];
+        v.beyond = direction > 0 ? q[s.axis] > end : (direction < 0 && q[s.axis] < end);
+        v.holds = v.judged = v.beyond;
+        v.t = v.beyond ? (double(q[s.axis]) - double(end)) / double(direction) : 0.0;
         v.weights[0] = 1.0;
         return v;
     }
+    const Vec3 p = judged_point(cells, q);
+    Vec3 corner[3], normal[3], A[3];
+    for (uint32_t k = 0; k < d; ++k) {
+        const uint32_t probe = cells.vertex(cell, k);
+        corner[k] = judged_point(cells, cells.position(probe));
+        const Vec3 n3 = {cells.normal(probe)[0], cells.normal(probe)[1], cells.normal(probe)[2]};
+        normal[k] = n3;
+        if (d == 2) {
+            float n[3] = {float(n3.x), float(n3.y), float(n3.z)}, uv[2];
+            project_to_plane(n, s.axis, uv);
+            normal[k] = {uv[0], uv[1], 0.0};
+        }
+        A[k] = corner[k] - p;
+    }
+    // f(t): the orientation of the moved facet with the query; f(0) > 0 strictly beyond the facet.
+    double c[4];
+    if (d == 3) {
+        const float* P[3] = {cells.position(cells.vertex(cell, 0)), cells.position(cells.vertex(cell, 1)),
+                             cells.position(cells.vertex(cell, 2))};
+        v.beyond = orient3d(P[0], P[1], P[2], q) > 0;
+        c[0] = -det(normal[0], normal[1], normal[2]);
+        c[1] = -(det(normal[0], normal[1], A[2]) + det(normal[0], A[1], normal[2]) + det(A[0], normal[1], normal[2]));
+        c[2] = -(det(normal[0], A[1], A[2]) + det(A[0], normal[1], A[2]) + det(A[0], A[1], normal[2]));
+        c[3] = -det(A[0], A[1], A[2]);
+    } else {
+        float uv[3][2];
+        project_to_plane(cells.position(cells.vertex(cell, 0)), s.axis, uv[0]);
+        project_to_plane(cells.position(cells.vertex(cell, 1)), s.axis, uv[1]);
+        project_to_plane(q, s.axis, uv[2]);
+        v.beyond = orient2d(uv[0], uv[1], uv[2]) > 0;
+        c[0] = 0;
+        c[1] = cross2(normal[0], normal[1]);
+        c[2] = cross2(normal[0], A[1]) + cross2(A[0], normal[1]);
+        c[3] = cross2(A[0], A[1]);
+    }
+    if (!v.beyond) return v;
     double candidates[3];
     int count = 0;
-    if (c[3] <= 0) {
-        candidates[count++] = 0.0;
-    } else {
-        double roots[3];
-        const int n = cubic_real_roots(c[0], c[1], c[2], c[3], roots);
-        for (int i = 0; i < n; ++i)
-            if (roots[i] >= 0) candidates[count++] = roots[i];
-    }
+    double roots[3];
+    const int n = cubic_real_roots(c[0], c[1], c[2], c[3], roots);
+    for (int i = 0; i < n; ++i)
+        if (roots[i] >= 0) candidates[count++] = roots[i];
     v.holds = count > 0;
     if (!v.holds) {
         if (!(guess_t >= 0)) return v;
-        candidates[count++] = guess_t;  // the moving facet never meets p: judge near where it should
-    }
-    Vec3 corner[3], normal[3];
-    for (uint32_t k = 0; k < d; ++k) {
-        const uint32_t probe = cells.vertex(cell, k);
-        corner[k] = probe_position(s, probe);
-        normal[k] = probe_normal(s, probe);
+        candidates[count++] = guess_t;  // the moving facet never meets the query: judge near where it should
     }
     double best_score = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < count; ++i) {
@@ -191,8 +320,8 @@ OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, b
             segment_weights(corner[0] + t * normal[0], corner[1] + t * normal[1], p, w);
         else
             triangle_weights(corner[0] + t * normal[0], corner[1] + t * normal[1], corner[2] + t * normal[2], p, w);
-        if (!all_finite(w, int(d))) continue;
-        const double score = minimum(w, int(d));
+        if (!all_finite(w, d)) continue;
+        const double score = minimum(w, d);
         if (score > best_score) {
             best_score = score;
             v.judged = true;
@@ -204,320 +333,186 @@ OuterView view_outer_cell(const CellView<Index>& cells, uint32_t cell, Vec3 p, b
     return v;
 }
 
-// Distance from p to the centroid of an outer cell's hull facet: roughly the t of p's moved facet
-// (probes move at unit speed along their normals).
+// Distance from the query to the centroid of an outer cell's hull facet: roughly the t of its
+// moved facet (probes move at unit speed along their normals).
 template <class Index>
-double facet_distance(const CellView<Index>& cells, uint32_t cell, Vec3 p) {
+double facet_distance(const Cells<Index>& cells, uint32_t cell, const float q[3]) {
     const uint32_t d = cells.s.dimension;
     Vec3 centroid{0, 0, 0};
-    for (uint32_t k = 0; k < d; ++k) centroid = centroid + probe_position(cells.s, cells.vertex(cell, k));
-    const Vec3 offset = p - (1.0 / double(d)) * centroid;
+    for (uint32_t k = 0; k < d; ++k) {
+        const float* p = cells.position(cells.vertex(cell, k));
+        centroid = centroid + Vec3{p[0], p[1], p[2]};
+    }
+    const Vec3 offset = Vec3{q[0], q[1], q[2]} - (1.0 / double(d)) * centroid;
     return std::sqrt(dot(offset, offset));
 }
 
-// Fills the probes and weights of a location: negatives clamped to zero, renormalised to sum 1,
-// unused slots repeating slot 0 with weight 0.
+// Weights of an outer cell: negatives clamped to zero, renormalised to sum 1.
 template <class Index>
-void set_weights(const CellView<Index>& cells, uint32_t cell, uint32_t used, const double* w, Location& loc) {
-    double clamped[4] = {0, 0, 0, 0};
-    double sum = 0;
-    for (uint32_t k = 0; k < used; ++k) {
-        clamped[k] = w[k] > 0 ? w[k] : 0.0;  // NaN becomes 0 too
-        sum += clamped[k];
-    }
+void set_outer_weights(const Cells<Index>& cells, uint32_t cell, const OuterView& o, Location& loc) {
+    const uint32_t used = cells.s.dimension;
+    double clamped[3] = {0, 0, 0}, sum = 0;
+    for (uint32_t k = 0; k < used; ++k) sum += clamped[k] = o.weights[k] > 0 ? o.weights[k] : 0.0;
     if (!(sum > 0) || !std::isfinite(sum)) {
-        clamped[0] = 1.0;
+        clamped[0] = sum = 1.0;
         for (uint32_t k = 1; k < used; ++k) clamped[k] = 0.0;
-        sum = 1.0;
     }
     for (uint32_t k = 0; k < 4; ++k) {
-        if (k < used) {
-            const double weight = clamped[k] / sum;
-            loc.probes[k] = cells.vertex(cell, k);
-            loc.weights[k] = float(weight < 1.0 ? weight : 1.0);
-        } else {
-            loc.probes[k] = cells.vertex(cell, 0);
-            loc.weights[k] = 0.0f;
-        }
+        loc.probes[k] = cells.vertex(cell, k < used ? k : 0);
+        loc.weights[k] = k < used ? float(std::fmin(clamped[k] / sum, 1.0)) : 0.0f;
     }
+    loc.cell = int32_t(cell);
+    loc.kind = CellKind::outer;
+    loc.t = float(o.t);
 }
 
-// Two cells may disagree by rounding about which side of their shared face p is on; within this
-// tolerance the walk stops on the face instead of going back.
-constexpr double kSharedFaceTolerance = 1e-4;
-
-// The slot to leave a cell through: the most negative weight whose neighbour is not the cell we came
-// from (with may_stop, only weights below -kInsideTolerance count). Returns -1 to stop here: with
-// may_stop, when the only way out leads straight back by less than kSharedFaceTolerance, or when
-// there is no neighbour at all.
+// The slot to leave an outer cell through: the most negative weight whose neighbour is not the cell
+// we came from (going back only when there is no other way). -1 when there is no neighbour at all.
 template <class Index>
-int exit_slot(const CellView<Index>& cells, uint32_t cell, const double* w, uint32_t slots, uint32_t previous,
-              bool may_stop) {
+int outer_exit_slot(const Cells<Index>& cells, uint32_t cell, const double* w, uint32_t previous) {
     int best = -1, back = -1;
-    double best_value = may_stop ? -kInsideToleranceD : std::numeric_limits<double>::infinity();
-    double back_value = std::numeric_limits<double>::infinity();
-    for (uint32_t k = 0; k < slots; ++k) {
+    double best_value = std::numeric_limits<double>::infinity();
+    for (uint32_t k = 0; k < cells.s.dimension; ++k) {
         const uint32_t n = cells.neighbour(cell, k);
         if (n == kNoCell) continue;
-        if (n == previous) {
-            if (w[k] < back_value) back_value = w[k], back = int(k);
-        } else if (w[k] < best_value) {
+        if (n == previous)
+            back = int(k);
+        else if (w[k] < best_value)
             best_value = w[k], best = int(k);
-        }
     }
-    if (best >= 0) return best;
-    if (back < 0) return -1;
-    if (may_stop && back_value >= -kSharedFaceTolerance) return -1;
-    return back;  // a real disagreement: going back lets the step cap and the exhaustive search settle it
+    return best >= 0 ? best : back;
 }
 
-// The exhaustive search over cells [first_cell, cell_count): all cells, or (first_cell =
-// inner_cell_count) only the outer cells, for a point known to be outside the hull. Returns false,
-// leaving loc alone, when no cell of the range holds the point.
 template <class Index>
-bool locate_exhaustive_from(const Store::Impl& s, const double local[3], uint32_t first_cell, Location& out) {
-    const CellView<Index> cells(s);
-    const Vec3 p{local[0], local[1], local[2]};
-    const uint32_t d = s.dimension;
-    double best_score = -std::numeric_limits<double>::infinity();
-    uint32_t best_cell = kNoCell;
-    double best_weights[4] = {1, 0, 0, 0};
-    double best_t = 0;
-    for (uint32_t cell = first_cell; cell < s.cell_count; ++cell) {
-        double w[4] = {0, 0, 0, 0};
-        double t = 0;
-        uint32_t used;
-        if (cell < s.inner_cell_count) {
-            if (!s.zero_volume.empty() && s.zero_volume[cell]) continue;  // holds no point
-            used = d + 1;
-            Vec3 v[4];
-            for (uint32_t k = 0; k <= d; ++k) v[k] = probe_position(s, cells.vertex(cell, k));
-            if (d == 0)
-                w[0] = 1.0;
-            else if (d == 1)
-                segment_weights(v[0], v[1], p, w);
-            else if (d == 2)
-                triangle_weights(v[0], v[1], v[2], p, w);
-            else
-                tetrahedron_weights(v[0], v[1], v[2], v[3], p, w);
-        } else {
-            used = d;
-            const OuterView o = view_outer_cell(cells, cell, p, false, -1.0);
-            if (!o.finite || !o.holds || !(o.f0 > 0)) continue;
-            t = o.t;
-            for (uint32_t k = 0; k < d; ++k) w[k] = o.weights[k];
-        }
-        if (!all_finite(w, int(used))) continue;
-        const double score = minimum(w, int(used));
-        if (score > best_score) {
-            best_score = score;
-            best_cell = cell;
-            best_t = t;
-            for (int k = 0; k < 4; ++k) best_weights[k] = w[k];
-        }
-    }
-    if (best_cell == kNoCell) {
-        if (first_cell > 0) return false;
-        best_cell = 0;  // nothing finite anywhere: the first cell, as good as any
-    }
+Location search(const Store::Impl& s, const float q[3], bool outer_only) {
+    const Cells<Index> cells(s);
     Location loc;
     loc.fallback = true;
-    loc.cell = int32_t(best_cell);
-    const bool outer = best_cell >= s.inner_cell_count;
-    loc.kind = outer ? TP_CELL_OUTER : TP_CELL_INNER;
-    if (s.cell_count == s.inner_cell_count && (s.header.flags & kFlagNoExtrapolation) && d > 0 &&
-        !(best_score >= -kInsideToleranceD)) {
-        loc.status = TP_ERROR_OUTSIDE;
-        out = loc;
-        return true;
+    if (!outer_only) {
+        for (uint32_t cell = 0; cell < s.inner_cell_count; ++cell) {
+            const InnerView v = view_inner_cell(cells, cell, q);
+            if (v.verdict == InnerView::holds) {
+                set_inner_weights(cells, cell, v, loc);
+                return loc;
+            }
+        }
+        if (s.cell_count == s.inner_cell_count) {  // outside a store without extrapolation
+            loc.status = s.dimension == 0 ? Status::ok : Status::outside;
+            if (s.dimension == 0) set_inner_weights(cells, 0, view_inner_cell(cells, 0, q), loc);
+            return loc;
+        }
     }
-    loc.t = float(best_t);
-    set_weights(cells, best_cell, outer ? d : d + 1, best_weights, loc);
-    out = loc;
-    return true;
-}
-
-template <class Index>
-Location locate_exhaustive_typed(const Store::Impl& s, const double local[3]) {
-    Location loc;
-    locate_exhaustive_from<Index>(s, local, 0, loc);
+    double best_score = -std::numeric_limits<double>::infinity();
+    for (uint32_t cell = s.inner_cell_count; cell < s.cell_count; ++cell) {
+        const OuterView o = view_outer_cell(cells, cell, q, -1.0);
+        if (!o.beyond || !o.holds) continue;
+        const double score = minimum(o.weights, s.dimension);
+        if (score > best_score) {
+            best_score = score;
+            set_outer_weights(cells, cell, o, loc);
+        }
+    }
+    if (loc.cell < 0 && !outer_only) {
+        // Nothing holds the point (only a store whose outer cells leave gaps): the first outer cell.
+        OuterView o;
+        o.weights[0] = 1;
+        set_outer_weights(cells, s.inner_cell_count, o, loc);
+    }
     return loc;
 }
 
-// local: the position in the store's frame in double, local_f the same rounded to float (the
-// frame of the stored positions and matrices).
 template <class Index>
-Location walk_cells(const Store::Impl& s, const double local[3], const float local_f[3], int32_t hint) {
-    const CellView<Index> cells(s);
-    const Vec3 p{local[0], local[1], local[2]};
-    const uint32_t d = s.dimension;
-    uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(local);
+Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
+    const Cells<Index> cells(s);
+    uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(q);
     uint32_t previous = kNoCell;
-    double last_t = -1.0;  // t of the last outer cell that held p's moved facet
-    bool beyond_hull = false;  // an outer cell found p strictly beyond its hull facet
-    // The last few cells: a walk that comes back to one of them is cycling, which a consistent
-    // walk never does, so the exhaustive search takes over at once.
-    uint32_t recent[kRecentCells];
-    for (uint32_t& r : recent) r = kNoCell;
+    double last_t = -1.0;       // t of the last outer cell that held the query's moved facet
+    bool beyond_hull = false;   // an outer cell found the query strictly beyond its hull facet
+    uint32_t recent[kRecentOuterCells];
+    uint32_t outer_visits = 0;
+    // A walk on a valid tessellation never visits a cell twice; only a corrupt blob reaches the cap.
+    const uint32_t step_cap = s.cell_count + 64;
+    Location loc;
     uint32_t steps = 0;
-    for (; steps <= s.step_cap; ++steps) {
-        if (steps > 0) {
-            bool cycling = false;
-            for (uint32_t r : recent) cycling |= r == cell;
-            if (cycling) break;
-        }
-        recent[steps % kRecentCells] = cell;
-        Location loc;
-        loc.cell = int32_t(cell);
-        loc.steps = steps;
-        double w[4] = {0, 0, 0, 0};
-        int slot;
+    for (; steps <= step_cap; ++steps) {
+        uint32_t next;
         if (cell < s.inner_cell_count) {
-            const float* m = s.inner_matrices + 12 * size_t(cell);
-            // Rows are relative to the slot-d probe: the difference is exact near it (Sterbenz).
-            const float* anchor = s.positions + 3 * size_t(cells.vertex(cell, d));
-            const float q[3] = {local_f[0] - anchor[0], local_f[1] - anchor[1], local_f[2] - anchor[2]};
-            float sum = 0.0f, bound[4] = {0, 0, 0, 0};
-            for (uint32_t k = 0; k < d; ++k) {
-                const float* r = m + 4 * k;
-                const float b = r[0] * q[0] + r[1] * q[1] + r[2] * q[2] + r[3];
-                w[k] = b;
-                sum += b;
-                bound[k] = std::fabs(r[0] * q[0]) + std::fabs(r[1] * q[1]) + std::fabs(r[2] * q[2]) + std::fabs(r[3]);
-                bound[d] += bound[k];
-            }
-            w[d] = 1.0f - sum;
-            // Inside up to the rounding of the float rows and of their evaluation (a few float steps
-            // of the terms' sizes), and never more than kInsideTolerance: the fixed tolerance alone is
-            // relative to the cell, and in a cell a million times wider than a neighbouring gap it
-            // would swallow the probe across that gap.
-            bool inside = true;
-            for (uint32_t k = 0; k <= d; ++k)
-                inside &= w[k] >= -std::fmin(kInsideToleranceD, kRowRounding * double(bound[k]));  // false for NaN
-            const bool flat = !s.zero_volume.empty() && s.zero_volume[cell];
-            if (inside && !flat) {
-                set_weights(cells, cell, d + 1, w, loc);
+            const InnerView v = view_inner_cell(cells, cell, q);
+            if (v.verdict == InnerView::holds) {
+                set_inner_weights(cells, cell, v, loc);
+                loc.steps = steps;
                 return loc;
             }
-            if (!all_finite(w, int(d + 1))) break;
-            // Beyond a hull facet (a store without outer cells): outside, by convexity of the hull.
-            for (uint32_t k = 0; k <= d; ++k) {
-                if (w[k] < -kInsideToleranceD && cells.neighbour(cell, k) == kNoCell) {
-                    loc.status = TP_ERROR_OUTSIDE;
+            if (v.verdict == InnerView::flat) {
+                // A zero-volume cell holds no point: hand the query (on its plane) to a neighbour.
+                next = kNoCell;
+                for (uint32_t k = 0; k <= s.dimension && next == kNoCell; ++k) {
+                    const uint32_t n = cells.neighbour(cell, k);
+                    if (n != previous) next = n;
+                }
+                if (next == kNoCell) break;
+            } else {
+                next = cells.neighbour(cell, uint32_t(v.exit));
+                if (next == kNoCell) {  // strictly beyond a facet of the convex hull
+                    loc.status = Status::outside;
+                    loc.cell = int32_t(cell);
+                    loc.steps = steps;
                     return loc;
                 }
-            }
-            // A zero-volume cell ignores the direction across its plane, so it must hand p on.
-            slot = exit_slot(cells, cell, w, d + 1, previous, !flat);
-            if (slot < 0) {
-                if (flat) break;
-                set_weights(cells, cell, d + 1, w, loc);
-                return loc;
             }
         } else {
-            const uint32_t base = cells.neighbour(cell, d);
-            const double guess_t = last_t >= 0 ? last_t : facet_distance(cells, cell, p);
-            const OuterView o = view_outer_cell(cells, cell, p, base == previous, guess_t);
-            if (!o.finite) break;
-            beyond_hull = beyond_hull || o.f0 > 0;
-            if (o.f0 <= 0 && base != previous) {
-                previous = cell;
-                cell = base;
-                continue;
-            }
-            if (!o.judged) break;
-            loc.kind = TP_CELL_OUTER;
-            loc.t = float(o.t);
-            if (o.holds) {
-                last_t = o.t;
-                if (minimum(o.weights, int(d)) >= -kInsideToleranceD) {
-                    set_weights(cells, cell, d, o.weights, loc);
+            bool cycling = false;
+            for (uint32_t i = 0; i < outer_visits && i < kRecentOuterCells; ++i) cycling |= recent[i] == cell;
+            if (cycling) break;
+            recent[outer_visits++ % kRecentOuterCells] = cell;
+            const double guess_t = last_t >= 0 ? last_t : facet_distance(cells, cell, q);
+            const OuterView o = view_outer_cell(cells, cell, q, guess_t);
+            if (!o.beyond) {
+                next = cells.neighbour(cell, s.dimension);  // the inner cell it rests on decides
+            } else {
+                beyond_hull = true;
+                if (!o.judged) break;
+                if (o.holds) {
+                    last_t = o.t;
+                    if (minimum(o.weights, s.dimension) >= -kOuterWeightTolerance) {
+                        set_outer_weights(cells, cell, o, loc);
+                        loc.steps = steps;
+                        return loc;
+                    }
+                }
+                const int slot = outer_exit_slot(cells, cell, o.weights, previous);
+                if (slot < 0) {
+                    if (!o.holds) break;
+                    set_outer_weights(cells, cell, o, loc);
+                    loc.steps = steps;
                     return loc;
                 }
-            }
-            slot = exit_slot(cells, cell, o.weights, d, previous, o.holds);
-            if (slot < 0) {
-                if (!o.holds) break;  // p is not in this cell and there is nowhere to go
-                set_weights(cells, cell, d, o.weights, loc);
-                return loc;
+                next = cells.neighbour(cell, uint32_t(slot));
             }
         }
         previous = cell;
-        cell = cells.neighbour(cell, uint32_t(slot));
+        cell = next;
     }
-    // Lost (a cycle, the step cap, or an undecidable cell): decide in double over all cells, or over
-    // the outer cells alone (a few hundred, not hundreds of thousands) for a point beyond a hull
-    // facet, hence outside the hull (which peeled slivers leave non-convex by at most their depth,
-    // 1e-5 of their length), where far out neighbouring outer cells' sweeps can disagree.
-    Location loc;
-    if (!beyond_hull || !locate_exhaustive_from<Index>(s, local, s.inner_cell_count, loc))
-        locate_exhaustive_from<Index>(s, local, 0, loc);
+    // Lost among outer cells whose sweeps disagree far out (or a corrupt tessellation): decide over
+    // the outer cells alone when the query is beyond the hull, else over every cell.
+    loc = search<Index>(s, q, beyond_hull);
+    if (loc.cell < 0) loc = search<Index>(s, q, false);
     loc.steps = steps;
     return loc;
 }
 
-// A query at a probe's own stored position answers that probe alone, whatever cell (inner, or outer
-// at t = 0) holds it: a zero-volume cell (TetGen keeps some where rounding makes four probes
-// coplanar) has no meaningful barycentrics there, an outer cell's root is only float-accurate, and
-// exactness at probes must not depend on which cell the walk ends in.
-template <class Index>
-Location walk(const Store::Impl& s, const float world[3], int32_t hint) {
-    double local[3];
-    float local_f[3];
-    for (int k = 0; k < 3; ++k) {
-        local[k] = double(world[k]) - s.origin[k];
-        local_f[k] = float(local[k]);
-    }
-    Location loc = walk_cells<Index>(s, local, local_f, hint);
-    if (loc.status != TP_OK) return loc;
-    // An outer cell's probes are its slots below d (a hull probe is often reached through one).
-    const uint32_t probes = loc.kind == TP_CELL_INNER ? s.dimension + 1 : s.dimension;
-    for (uint32_t k = 0; k < probes; ++k) {
-        const uint32_t probe = loc.probes[k];
-        const float* v = s.positions + 3 * size_t(probe);
-        if (v[0] == local_f[0] && v[1] == local_f[1] && v[2] == local_f[2]) {
-            for (uint32_t j = 0; j < 4; ++j) loc.weights[j] = j == k ? 1.0f : 0.0f;
-            loc.t = 0.0f;  // a hull probe sits on its own ray at t = 0
-            break;
-        }
-    }
-    return loc;
-}
-
-template <class Index>
-void mark_zero_volume_typed(Store::Impl& s) {
-    const CellView<Index> cells(s);
-    s.zero_volume.assign(s.inner_cell_count, 0);
-    for (uint32_t cell = 0; cell < s.inner_cell_count; ++cell) {
-        const Vec3 last = probe_position(s, cells.vertex(cell, 3));
-        const Vec3 e0 = probe_position(s, cells.vertex(cell, 0)) - last;
-        const Vec3 e1 = probe_position(s, cells.vertex(cell, 1)) - last;
-        const Vec3 e2 = probe_position(s, cells.vertex(cell, 2)) - last;
-        const double scale = std::sqrt(dot(e0, e0) * dot(e1, e1) * dot(e2, e2));
-        s.zero_volume[cell] = std::fabs(dot(e0, cross(e1, e2))) <= 1e-12 * scale;
-    }
-}
-
 }  // namespace
 
-void mark_zero_volume_cells(Store::Impl& store) {
-    if (store.dimension != 3) return;
-    if (store.index32)
-        mark_zero_volume_typed<uint32_t>(store);
-    else
-        mark_zero_volume_typed<uint16_t>(store);
+void local_position(const Store::Impl& s, const float world[3], float local[3]) {
+    for (int k = 0; k < 3; ++k) local[k] = float(double(world[k]) - s.origin[k]);
 }
 
-LocateFunction locate_function(bool index32) { return index32 ? &walk<uint32_t> : &walk<uint16_t>; }
-
-bool locate_exhaustive_outer(const Store::Impl& store, const double local_position[3], Location& out) {
-    return store.index32 ? locate_exhaustive_from<uint32_t>(store, local_position, store.inner_cell_count, out)
-                         : locate_exhaustive_from<uint16_t>(store, local_position, store.inner_cell_count, out);
+Location locate_local(const Store::Impl& store, const float local[3], int32_t hint) {
+    return store.index32 ? walk<uint32_t>(store, local, hint) : walk<uint16_t>(store, local, hint);
 }
 
-Location locate_exhaustive(const Store::Impl& store, const double local_position[3]) {
-    return store.index32 ? locate_exhaustive_typed<uint32_t>(store, local_position)
-                         : locate_exhaustive_typed<uint16_t>(store, local_position);
+Location locate_exhaustive(const Store::Impl& store, const float local[3], bool outer_only) {
+    return store.index32 ? search<uint32_t>(store, local, outer_only) : search<uint16_t>(store, local, outer_only);
 }
 
 }  // namespace tetprobe

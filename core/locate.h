@@ -1,29 +1,25 @@
-// Point location in a validated store: the walk from a hint (or a grid start cell) across inner and
-// outer cells, and the exhaustive double-precision decision it falls back to when it seems lost.
+// Point location in a validated store: the visibility walk from a hint (or a grid start cell),
+// decided by exact orientation predicates on the stored float positions, and the exhaustive search
+// that referees it (and takes over outside the hull when neighbouring outer cells disagree).
 #pragma once
 
 #include "core/store_impl.h"
 
 namespace tetprobe {
 
-// Barycentric coordinates within this tolerance below zero still count as inside a cell.
-constexpr float kInsideTolerance = 1e-5f;
+// Moved-facet weights of an outer cell within this tolerance below zero still hold a point: the
+// outer cells alone are judged after a root solve, in double.
+constexpr double kOuterWeightTolerance = 1e-5;
 
-// The walk for the given index width (chosen once, when a store is loaded).
-LocateFunction locate_function(bool index32);
+// The query's position in the store's frame: world minus origin, rounded to float exactly as the
+// stored positions were.
+void local_position(const Store::Impl& store, const float world[3], float local[3]);
 
-// Finds the inner cells of zero volume (by the builder's own test, in double on the stored
-// positions) and records them in store.zero_volume. Called once when a store is loaded.
-void mark_zero_volume_cells(Store::Impl& store);
+// Finds the cell holding a local position, starting from hint (-1 or out of range: the grid).
+Location locate_local(const Store::Impl& store, const float local[3], int32_t hint);
 
-// The cell of a local position decided over all cells in double precision: the cell whose smallest
-// barycentric coordinate (or, for outer cells, moved-triangle weight) is largest. O(cells); the
-// walk's fallback, and a referee for tests. Never allocates.
-Location locate_exhaustive(const Store::Impl& store, const double local_position[3]);
-
-// The same over the outer cells alone, for a point beyond a hull facet (then outside the hull, up to
-// the depth of peeled slivers, so an outer cell answers it): O(outer cells). Returns false, leaving
-// out alone, when none holds it.
-bool locate_exhaustive_outer(const Store::Impl& store, const double local_position[3], Location& out);
+// The cell decided over all cells (an inner cell that holds the point exactly, else the best outer
+// cell), or over the outer cells alone (cell -1 when none holds it). O(cells); never allocates.
+Location locate_exhaustive(const Store::Impl& store, const float local[3], bool outer_only);
 
 }  // namespace tetprobe

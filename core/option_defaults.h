@@ -1,10 +1,8 @@
-// The defaults of the public structs (what tp_*_init fills in), written once: both libraries'
-// initialisers and the bake's own settings read them from here.
+// The default values of the build and bake settings, written once: the C ABI's tp_*_init
+// (capi/struct_defaults.h) and the bake's own settings read them from here.
 #pragma once
 
-#include "capi/tetprobe.h"
-
-#include <cmath>
+#include <cstdint>
 
 namespace tetprobe {
 
@@ -13,46 +11,5 @@ constexpr double kDefaultFlatTolerance = 1e-4;   // fraction of the probe set's 
 constexpr uint32_t kDefaultBakeRays = 256;
 constexpr uint32_t kDefaultBakeBounces = 2;
 constexpr float kDefaultAlbedo = 0.8f;
-
-inline tp_build_options default_build_options() {
-    tp_build_options options{};
-    options.struct_size = sizeof(tp_build_options);
-    options.merge_tolerance = kDefaultMergeTolerance;
-    options.flat_tolerance = kDefaultFlatTolerance;
-    return options;
-}
-
-inline tp_bake_options default_bake_options() {
-    tp_bake_options options{};
-    options.struct_size = sizeof(tp_bake_options);
-    options.rays = kDefaultBakeRays;
-    options.bounces = kDefaultBakeBounces;
-    return options;
-}
-
-// Grey, one-sided, not emissive.
-inline tp_material default_material() {
-    tp_material material{};
-    material.struct_size = sizeof(tp_material);
-    material.albedo[0] = material.albedo[1] = material.albedo[2] = kDefaultAlbedo;
-    return material;
-}
-
-// A white, baked, shadowing point light of intensity 1 and unlimited range; spot cones 30 and 45
-// degrees; pointing down.
-inline tp_light default_light() {
-    tp_light light{};
-    light.struct_size = sizeof(tp_light);
-    light.type = TP_LIGHT_POINT;
-    light.mode = TP_LIGHT_MODE_BAKED;
-    light.shadows = 1;
-    light.color[0] = light.color[1] = light.color[2] = 1.0f;
-    light.intensity = 1.0f;
-    light.direction[1] = -1.0f;
-    light.range = INFINITY;
-    light.inner_angle = 30.0f;
-    light.outer_angle = 45.0f;
-    return light;
-}
 
 }  // namespace tetprobe

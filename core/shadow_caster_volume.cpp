@@ -39,10 +39,10 @@ std::vector<Plane> normalized_planes(const std::vector<Plane>& planes) {
     for (size_t i = 0; i < planes.size(); ++i) {
         const Plane& p = planes[i];
         if (!p.allFinite())
-            throw Error(TP_ERROR_INVALID_ARGUMENT, "plane " + std::to_string(i) + " is not finite");
+            throw Error(Status::invalid_argument, "plane " + std::to_string(i) + " is not finite");
         double length = p.head<3>().norm();
         if (!(length > 0.0))
-            throw Error(TP_ERROR_INVALID_ARGUMENT, "plane " + std::to_string(i) + " has a zero normal");
+            throw Error(Status::invalid_argument, "plane " + std::to_string(i) + " has a zero normal");
         out.push_back(p / length);
     }
     return out;
@@ -89,7 +89,7 @@ Polyhedron build_polyhedron(const std::vector<Plane>& planes) {
         }
     }
     if (vertices.size() < 4)
-        throw Error(TP_ERROR_DEGENERATE, "the planes do not bound a convex polyhedron with volume");
+        throw Error(Status::degenerate, "the planes do not bound a convex polyhedron with volume");
 
     double magnitude = max_d;
     for (const Vector3d& v : vertices) magnitude = std::max(magnitude, v.cwiseAbs().maxCoeff());
@@ -148,7 +148,7 @@ Polyhedron build_polyhedron(const std::vector<Plane>& planes) {
             if (ends != 2) closed = false;
         }
     }
-    if (!closed) throw Error(TP_ERROR_DEGENERATE, "the planes do not bound a closed convex polyhedron");
+    if (!closed) throw Error(Status::degenerate, "the planes do not bound a closed convex polyhedron");
     return poly;
 }
 
@@ -168,14 +168,14 @@ size_t shadow_caster_volume_bound(size_t plane_count) { return 4 * plane_count +
 
 std::vector<Plane> shadow_caster_volume(const std::vector<Plane>& region, CasterLight light,
                                         const Eigen::Vector3d& light_vector) {
-    if (!light_vector.allFinite()) throw Error(TP_ERROR_INVALID_ARGUMENT, "the light vector is not finite");
+    if (!light_vector.allFinite()) throw Error(Status::invalid_argument, "the light vector is not finite");
     const Polyhedron poly = build_polyhedron(normalized_planes(region));
     const size_t faces = poly.faces.size();
 
     Vector3d direction = Vector3d::Zero();
     if (light == CasterLight::directional) {
         if (!(light_vector.norm() > 0.0))
-            throw Error(TP_ERROR_INVALID_ARGUMENT, "the light direction is zero");
+            throw Error(Status::invalid_argument, "the light direction is zero");
         direction = light_vector.normalized();
     }
 

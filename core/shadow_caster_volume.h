@@ -25,7 +25,7 @@ size_t shadow_caster_volume_bound(size_t plane_count);
 // bounds the cone's apex, which removes the false positives of box tests near the acute apex.
 // A point light inside the region gives the region itself (no caster outside it can shadow it);
 // a directional light gives an unbounded volume. Output planes are normalized. Throws
-// Error(TP_ERROR_DEGENERATE) if the region is empty or unbounded and Error(TP_ERROR_INVALID_ARGUMENT)
+// Error(Status::degenerate) if the region is empty or unbounded and Error(Status::invalid_argument)
 // for a non-finite input or a zero direction.
 std::vector<Plane> shadow_caster_volume(const std::vector<Plane>& region, CasterLight light,
                                         const Eigen::Vector3d& light_vector);

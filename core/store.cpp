@@ -2,6 +2,7 @@
 #include "core/store.h"
 
 #include "core/error.h"
+#include "core/cell_adjacency.h"
 #include "core/half.h"
 #include "core/locate.h"
 #include "core/store_impl.h"
@@ -13,21 +14,30 @@
 
 namespace tetprobe {
 
-namespace {
-
-AlignedBytes aligned_copy(const void* data, size_t size) {
-    // At least one alignment unit, so an empty blob still gets a valid pointer.
-    const size_t capacity = std::max(size, kSectionAlignment);
-    AlignedBytes bytes(static_cast<uint8_t*>(::operator new(capacity, std::align_val_t(kSectionAlignment))));
-    if (size) std::memcpy(bytes.get(), data, size);
+AlignedBytes aligned_bytes(size_t size) {
+    // At least one line, so an empty blob still gets a valid pointer; zero past size.
+    const size_t capacity = (std::max(size, size_t(64)) + 63) & ~size_t(63);
+    AlignedBytes bytes(static_cast<uint8_t*>(::operator new(capacity, std::align_val_t(64))));
+    std::memset(bytes.get(), 0, capacity);
     return bytes;
 }
 
-// Steps a walk may take before it is considered lost: generous next to the ~N^(1/d) steps of a
-// walk across the whole tessellation, so that only a numerical cycle ever reaches it.
-uint32_t walk_step_cap(uint32_t cell_count, uint32_t dimension) {
-    const double across = std::ceil(std::pow(double(cell_count), 1.0 / double(std::max(dimension, 1u))));
-    return uint32_t(std::min(256.0 + 16.0 * across, 1e9));
+namespace {
+
+// The walk's cell records: the blob's own (fast layout), or rebuilt from its vertices (compact).
+template <class Index>
+void set_cell_records(Store::Impl& s, const uint8_t* section) {
+    if (!(s.header.flags & kFlagCompact)) {
+        s.cells = section;
+        return;
+    }
+    s.rebuilt_cells = aligned_bytes(size_t(s.cell_count) * sizeof(CellRecord<Index>));
+    auto* records = reinterpret_cast<CellRecord<Index>*>(s.rebuilt_cells.get());
+    const Index* vertices = reinterpret_cast<const Index*>(section);
+    for (uint32_t c = 0; c < s.cell_count; ++c)
+        std::memcpy(records[c].vertices, vertices + 4 * size_t(c), sizeof records[c].vertices);
+    rebuild_neighbours(records, s.cell_count, s.dimension);
+    s.cells = records;
 }
 
 }  // namespace
@@ -36,10 +46,11 @@ Store::Store() : impl_(new Impl) {}
 Store::~Store() = default;
 
 std::unique_ptr<Store> Store::load(const void* data, size_t size) {
-    if (!data && size) throw Error(TP_ERROR_INVALID_ARGUMENT, "blob data is NULL");
+    if (!data && size) throw Error(Status::invalid_argument, "blob data is NULL");
     std::unique_ptr<Store> store(new Store);
     Impl& s = *store->impl_;
-    s.bytes = aligned_copy(data, size);
+    s.bytes = aligned_bytes(size);
+    if (size) std::memcpy(s.bytes.get(), data, size);
     s.size = size;
     const uint8_t* base = s.bytes.get();
     validate_store_blob(base, size);
@@ -50,10 +61,11 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     const StoreHeader& h = s.header;
     s.index32 = (h.flags & kFlagIndex32) != 0;
     s.dimension = h.dimension;
+    s.axis = h.axis;
     s.probe_count = h.probe_count;
     s.cell_count = h.cell_count;
     s.inner_cell_count = h.inner_cell_count;
-    s.step_cap = walk_step_cap(h.cell_count, h.dimension);
+    s.sh_halves = (h.flags & kFlagCompact) ? kShHalvesCompact : kShHalvesFast;
     for (int k = 0; k < 3; ++k) s.origin[k] = h.origin[k];
     auto section = [&](Section id) { return base + table[id].offset; };
     s.positions = reinterpret_cast<const float*>(section(kSectionPositions));
@@ -61,13 +73,12 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     s.sh = reinterpret_cast<const uint16_t*>(section(kSectionSh));
     s.probe_source = reinterpret_cast<const uint32_t*>(section(kSectionProbeSource));
     s.input_remap = reinterpret_cast<const uint32_t*>(section(kSectionInputRemap));
-    s.cell_vertices = section(kSectionCellVertices);
-    s.cell_neighbours = section(kSectionCellNeighbours);
-    s.inner_matrices = reinterpret_cast<const float*>(section(kSectionInnerMatrices));
-    s.outer_matrices = reinterpret_cast<const float*>(section(kSectionOuterMatrices));
     s.grid_cells = section(kSectionGrid);
-    s.locate = locate_function(s.index32);
-    mark_zero_volume_cells(s);
+    if (s.index32)
+        set_cell_records<uint32_t>(s, section(kSectionCells));
+    else
+        set_cell_records<uint16_t>(s, section(kSectionCells));
+    validate_cell_records(s);
     return store;
 }
 
@@ -88,20 +99,47 @@ void Store::probe_sh(uint32_t stored, float out[27]) const {
         std::fill(out, out + 27, 0.0f);
         return;
     }
-    halves_to_floats(impl_->sh + size_t(stored) * 27, out, 27);
+    halves_to_floats(impl_->sh + size_t(stored) * impl_->sh_halves, out, 27);
+}
+
+const float* Store::probe_position(uint32_t stored) const {
+    return impl_->positions + 3 * size_t(stored < impl_->probe_count ? stored : 0);
+}
+
+namespace {
+template <class Index>
+void widen_cell(const Store::Impl& s, uint32_t cell, uint32_t vertices[4], uint32_t neighbours[4]) {
+    const CellRecord<Index>& r = static_cast<const CellRecord<Index>*>(s.cells)[cell];
+    for (int k = 0; k < 4; ++k) {
+        vertices[k] = r.vertices[k];
+        neighbours[k] = r.neighbours[k];
+        if (sizeof(Index) == 2) {
+            if (vertices[k] == kOuter16) vertices[k] = kOuter32;
+            if (vertices[k] == kNone16) vertices[k] = kNone32;
+            if (neighbours[k] == kNone16) neighbours[k] = kNone32;
+        }
+    }
+}
+}  // namespace
+
+void Store::cell(uint32_t cell, uint32_t vertices[4], uint32_t neighbours[4]) const {
+    if (cell >= impl_->cell_count) cell = 0;
+    if (impl_->index32)
+        widen_cell<uint32_t>(*impl_, cell, vertices, neighbours);
+    else
+        widen_cell<uint16_t>(*impl_, cell, vertices, neighbours);
 }
 
 Location Store::locate(const float world_position[3], int32_t hint) const {
-    return impl_->locate(*impl_, world_position, hint);
+    float q[3];
+    local_position(*impl_, world_position, q);
+    return locate_local(*impl_, q, hint);
 }
 
 Location Store::locate_exhaustive(const float world_position[3], Cells cells) const {
-    double local[3];
-    for (int k = 0; k < 3; ++k) local[k] = double(world_position[k]) - impl_->origin[k];
-    Location loc;
-    if (cells == Cells::all) return tetprobe::locate_exhaustive(*impl_, local);
-    if (!locate_exhaustive_outer(*impl_, local, loc)) loc.cell = -1;
-    return loc;
+    float q[3];
+    local_position(*impl_, world_position, q);
+    return tetprobe::locate_exhaustive(*impl_, q, cells == Cells::outer);
 }
 
 }  // namespace tetprobe

@@ -2,7 +2,7 @@
 // never throw, and are safe from any number of threads at once.
 #pragma once
 
-#include "capi/tetprobe.h"
+#include "core/error.h"
 #include "core/store_format.h"
 
 #include <cstddef>
@@ -12,21 +12,29 @@
 
 namespace tetprobe {
 
-// Everything one query used (the C ABI's tp_location, in stored-probe and input-probe terms).
+enum class CellKind : uint32_t { inner = 0, outer = 1 };
+
+// Everything one query used (the C ABI's tp_location, in stored-probe terms).
 struct Location {
-    tp_status status = TP_OK;     // TP_OK or TP_ERROR_OUTSIDE (store built without extrapolation)
+    Status status = Status::ok;   // ok, or outside (a store built without extrapolation)
     int32_t cell = -1;
-    uint32_t kind = TP_CELL_INNER;
+    CellKind kind = CellKind::inner;
     uint32_t steps = 0;
-    bool fallback = false;
+    bool fallback = false;        // the walk handed the decision to the exhaustive search
     uint32_t probes[4] = {0, 0, 0, 0};  // stored probe indices; unused slots repeat slot 0 with weight 0
     float weights[4] = {0, 0, 0, 0};
     float t = 0;
 };
 
+// How a batch runs (see tp_batch_options).
+struct BatchSettings {
+    bool chain_hints = false;  // without hints, each query starts where the previous one ended
+    uint32_t threads = 1;
+};
+
 class Store {
 public:
-    // Copies and validates a blob; throws Error(TP_ERROR_INVALID_BLOB / TP_ERROR_VERSION) on failure.
+    // Copies and validates a blob; throws Error(Status::invalid_blob / Status::version) on failure.
     static std::unique_ptr<Store> load(const void* data, size_t size);
     ~Store();
 
@@ -39,15 +47,29 @@ public:
     uint32_t input_to_stored(uint32_t input) const;
     // Decodes a stored probe's half SH to 27 floats.
     void probe_sh(uint32_t stored, float out[27]) const;
+    // A stored probe's local position (3 floats).
+    const float* probe_position(uint32_t stored) const;
+    // The four vertex and four neighbour slots of a cell, widened to 32 bits (kNone32, kOuter32).
+    void cell(uint32_t cell, uint32_t vertices[4], uint32_t neighbours[4]) const;
 
     // Finds the cell of a world-space position starting from hint (-1 = none: start from the grid).
     Location locate(const float world_position[3], int32_t hint) const;
-    // The walk's referee: the cell decided in double over every cell (O(cells)), or over the outer
-    // cells alone (the walk's fallback for a point beyond the hull; cell -1 if none holds it).
+    // The walk's referee: the cell decided over every cell by exact orientations (O(cells)), or over
+    // the outer cells alone (the walk's fallback for a point beyond the hull; cell -1 if none holds it).
     enum class Cells { all, outer };
     Location locate_exhaustive(const float world_position[3], Cells cells) const;
-    // locate + blend; *hint (may be null) is read and updated. Returns TP_OK or TP_ERROR_OUTSIDE.
-    tp_status interpolate(const float world_position[3], int32_t* hint, float out_sh[27]) const;
+    // locate + blend; *hint (may be null) is read and updated. Returns ok or outside (SH zero).
+    Status interpolate(const float world_position[3], int32_t* hint, float out_sh[27]) const;
+
+    // count queries at byte strides (already resolved, > 0); hints may be null. Returns ok, or
+    // outside with *first_outside the index of the first query outside (its SH and weights zero).
+    Status interpolate_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                             size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,
+                             size_t* first_outside) const;
+    // The same for weights: out_probes are stored probe indices.
+    Status weights_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                         size_t hint_stride, uint32_t* out_probes, size_t probes_stride, float* out_weights,
+                         size_t weights_stride, const BatchSettings& settings, size_t* first_outside) const;
 
     struct Impl;
 
@@ -56,8 +78,8 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-// Serialises StoreData into a blob (chooses 16- or 32-bit indices, converts SH to half).
-// Throws Error(TP_ERROR_INVALID_ARGUMENT) on data the format cannot hold.
+// Serialises StoreData into a blob (chooses 16- or 32-bit indices, converts SH to half, lays out the
+// fast or the compact layout). Throws Error(Status::invalid_argument) on data the format cannot hold.
 std::vector<uint8_t> write_store_blob(const struct StoreData& data);
 
 }  // namespace tetprobe

@@ -12,21 +12,18 @@ bool expected_section_sizes(const StoreHeader& header, uint64_t sizes[kSectionCo
     if (header.inner_cell_count > header.cell_count) return false;
     const uint64_t probes = header.probe_count;
     const uint64_t cells = header.cell_count;
-    const uint64_t inner = header.inner_cell_count;
     const uint64_t index_bytes = store_index_bytes(header.flags);
     uint64_t grid_cells = 0;
     if (!multiply(header.grid[0], header.grid[1], &grid_cells)) return false;
     if (!multiply(grid_cells, header.grid[2], &grid_cells)) return false;
 
+    const bool compact = (header.flags & kFlagCompact) != 0;
     sizes[kSectionPositions] = probes * 3 * sizeof(float);
     sizes[kSectionNormals] = probes * 3 * sizeof(float);
-    sizes[kSectionSh] = probes * 27 * sizeof(uint16_t);
+    sizes[kSectionSh] = probes * (compact ? kShHalvesCompact : kShHalvesFast) * sizeof(uint16_t);
     sizes[kSectionProbeSource] = probes * sizeof(uint32_t);
     sizes[kSectionInputRemap] = uint64_t(header.input_probe_count) * sizeof(uint32_t);
-    sizes[kSectionCellVertices] = cells * 4 * index_bytes;
-    sizes[kSectionCellNeighbours] = cells * 4 * index_bytes;
-    sizes[kSectionInnerMatrices] = inner * 12 * sizeof(float);
-    sizes[kSectionOuterMatrices] = (cells - inner) * 16 * sizeof(float);
+    sizes[kSectionCells] = cells * (compact ? 4 : 8) * index_bytes;
     return multiply(grid_cells, index_bytes, &sizes[kSectionGrid]);
 }
 

@@ -1,7 +1,10 @@
-// validate_store_blob: every rule of store_format.h, checked once so that queries can trust the data.
+// validate_store_blob and validate_cell_records: every rule of store_format.h, checked once so that
+// queries can trust the data.
 #include "core/store_validation.h"
 
 #include "core/error.h"
+#include "core/orientation.h"
+#include "core/plane_projection.h"
 #include "core/store_format.h"
 #include "core/store_layout.h"
 
@@ -13,7 +16,7 @@ namespace tetprobe {
 
 namespace {
 
-[[noreturn]] void reject(const std::string& what) { throw Error(TP_ERROR_INVALID_BLOB, "invalid store blob: " + what); }
+[[noreturn]] void reject(const std::string& what) { throw Error(Status::invalid_blob, "invalid store blob: " + what); }
 
 std::string at(const char* section, uint64_t index) { return std::string(section) + "[" + std::to_string(index) + "]"; }
 
@@ -40,8 +43,10 @@ void check_header(const StoreHeader& h, size_t size) {
     if (size < kHeaderSize) reject("truncated: " + std::to_string(size) + " bytes, the section table ends at " +
                                    std::to_string(kHeaderSize));
     if (h.reserved != 0) reject("reserved header field is not zero");
-    if (h.flags & ~(kFlagIndex32 | kFlagNoExtrapolation)) reject("unknown flags " + std::to_string(h.flags));
+    if (h.flags & ~kKnownFlags) reject("unknown flags " + std::to_string(h.flags));
     if (h.dimension > 3) reject("dimension " + std::to_string(h.dimension) + " is above 3");
+    if (h.axis > 2 || ((h.dimension == 0 || h.dimension == 3) && h.axis != 0))
+        reject("axis " + std::to_string(h.axis) + " does not fit dimension " + std::to_string(h.dimension));
     if (h.probe_count < 1) reject("probe_count is 0");
     if (h.input_probe_count < h.probe_count) reject("input_probe_count is below probe_count");
     if (h.inner_cell_count < 1) reject("inner_cell_count is 0");
@@ -83,50 +88,30 @@ void check_sections(const uint8_t* data, size_t size, const StoreHeader& h, Sect
     if (end != size) reject(std::to_string(size - end) + " trailing bytes after the last section");
 }
 
+// Vertex slots (and, in the fast layout, neighbour indices by range) of every cell; grid entries.
 template <class Index>
-void check_cells(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
-    const Index* vertices = reinterpret_cast<const Index*>(data + table[kSectionCellVertices].offset);
-    const Index* neighbours = reinterpret_cast<const Index*>(data + table[kSectionCellNeighbours].offset);
+void check_cell_indices(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
+    const bool compact = (h.flags & kFlagCompact) != 0;
+    const uint32_t stride = compact ? 4 : 8;
+    const Index* cells = reinterpret_cast<const Index*>(data + table[kSectionCells].offset);
     const Index* grid = reinterpret_cast<const Index*>(data + table[kSectionGrid].offset);
     const uint32_t d = h.dimension;
-    const uint32_t inner = h.inner_cell_count;
-    const bool may_lack_neighbours = (h.flags & kFlagNoExtrapolation) || d == 0;
-
     for (uint64_t c = 0; c < h.cell_count; ++c) {
-        const bool is_inner = c < inner;
+        const bool is_inner = c < h.inner_cell_count;
         for (uint32_t k = 0; k < 4; ++k) {
-            const uint32_t v = widen_index(vertices[4 * c + k]);
+            const uint64_t i = stride * c + k;
+            const uint32_t v = widen_index(cells[i]);
             if (k > d) {
-                if (v != kNone32) reject(at("cell_vertices", 4 * c + k) + " is above the dimension and must be none");
+                if (v != kNone32) reject(at("cells", i) + " is a vertex slot above the dimension and must be none");
             } else if (!is_inner && k == d) {
-                if (v != kOuter32) reject(at("cell_vertices", 4 * c + k) + " of an outer cell must be the outer marker");
+                if (v != kOuter32) reject(at("cells", i) + " of an outer cell must be the outer marker");
             } else if (v >= h.probe_count) {
-                reject(at("cell_vertices", 4 * c + k) + " = " + std::to_string(v) + " is not a probe (probe_count " +
+                reject(at("cells", i) + " = " + std::to_string(v) + " is not a probe (probe_count " +
                        std::to_string(h.probe_count) + ")");
             }
-
-            const uint32_t n = widen_index(neighbours[4 * c + k]);
-            if (k > d) {
-                if (n != kNone32) reject(at("cell_neighbours", 4 * c + k) + " is above the dimension and must be none");
-            } else if (is_inner) {
-                if (n == kNone32 ? !may_lack_neighbours : n >= h.cell_count)
-                    reject(at("cell_neighbours", 4 * c + k) + " is not a cell");
-            } else if (k == d) {
-                if (n >= inner) reject(at("cell_neighbours", 4 * c + k) + " of an outer cell must be the inner cell it rests on");
-            } else if (n == kNone32 ? d != 1 : (n < inner || n >= h.cell_count)) {
-                reject(at("cell_neighbours", 4 * c + k) + " of an outer cell must be an outer cell");
-            }
-        }
-    }
-    // Adjacency is symmetric: a neighbour lists the cell back.
-    for (uint64_t c = 0; c < h.cell_count; ++c) {
-        for (uint32_t k = 0; k < 4; ++k) {
-            const uint32_t n = widen_index(neighbours[4 * c + k]);
-            if (n == kNone32) continue;
-            bool listed = false;
-            for (uint32_t j = 0; j < 4; ++j) listed |= widen_index(neighbours[4 * uint64_t(n) + j]) == c;
-            if (!listed) reject(at("cell_neighbours", 4 * c + k) + " = " + std::to_string(n) + " does not list cell " +
-                                std::to_string(c) + " back");
+            if (compact) continue;
+            const uint32_t n = widen_index(cells[i + 4]);
+            if (n != kNone32 && n >= h.cell_count) reject(at("cells", i + 4) + " = " + std::to_string(n) + " is not a cell");
         }
     }
     const uint64_t grid_count = uint64_t(h.grid[0]) * h.grid[1] * h.grid[2];
@@ -138,10 +123,15 @@ void check_probes(const uint8_t* data, const StoreHeader& h, const SectionEntry 
     const uint64_t probes = h.probe_count;
     check_finite_floats(reinterpret_cast<const float*>(data + table[kSectionPositions].offset), probes * 3, "positions");
     check_finite_floats(reinterpret_cast<const float*>(data + table[kSectionNormals].offset), probes * 3, "normals");
+    const uint64_t halves = (h.flags & kFlagCompact) ? kShHalvesCompact : kShHalvesFast;
     const uint16_t* sh = reinterpret_cast<const uint16_t*>(data + table[kSectionSh].offset);
-    for (uint64_t i = 0; i < probes * 27; ++i)
-        if ((sh[i] & 0x7C00u) == 0x7C00u) reject(at("sh", i) + " is not a finite half");
-
+    for (uint64_t p = 0; p < probes; ++p) {
+        for (uint64_t i = 0; i < halves; ++i) {
+            const uint16_t value = sh[p * halves + i];
+            if (i >= 27 && value != 0) reject(at("sh", p * halves + i) + " is padding and must be zero");
+            if ((value & 0x7C00u) == 0x7C00u) reject(at("sh", p * halves + i) + " is not a finite half");
+        }
+    }
     const uint32_t* source = reinterpret_cast<const uint32_t*>(data + table[kSectionProbeSource].offset);
     const uint32_t* remap = reinterpret_cast<const uint32_t*>(data + table[kSectionInputRemap].offset);
     for (uint64_t i = 0; i < h.input_probe_count; ++i)
@@ -152,36 +142,78 @@ void check_probes(const uint8_t* data, const StoreHeader& h, const SectionEntry 
     }
 }
 
-// Finite entries, and zero rows where the dimension leaves a matrix unused.
-void check_matrices(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
-    const float* inner = reinterpret_cast<const float*>(data + table[kSectionInnerMatrices].offset);
-    const float* outer = reinterpret_cast<const float*>(data + table[kSectionOuterMatrices].offset);
-    const uint64_t inner_count = h.inner_cell_count;
-    const uint64_t outer_count = uint64_t(h.cell_count) - h.inner_cell_count;
-    check_finite_floats(inner, inner_count * 12, "inner_matrices");
-    check_finite_floats(outer, outer_count * 16, "outer_matrices");
-    for (uint64_t c = 0; c < inner_count; ++c)
-        for (uint32_t r = h.dimension; r < 3; ++r)
-            for (int j = 0; j < 4; ++j)
-                if (inner[12 * c + 4 * r + j] != 0.0f) reject(at("inner_matrices", 12 * c + 4 * r + j) + " must be zero");
-    const uint32_t zero_rows = h.dimension == 1 ? 3 : (h.dimension == 2 ? 1 : 0);
-    for (uint64_t c = 0; c < outer_count; ++c)
-        for (uint32_t r = 0; r < zero_rows; ++r)
-            for (int j = 0; j < 4; ++j)
-                if (outer[16 * c + 4 * r + j] != 0.0f) reject(at("outer_matrices", 16 * c + 4 * r + j) + " must be zero");
+template <class Index>
+void check_records(const Store::Impl& s) {
+    const auto* records = static_cast<const CellRecord<Index>*>(s.cells);
+    const uint32_t d = s.dimension;
+    const uint32_t inner = s.inner_cell_count;
+    const bool may_lack_neighbours = (s.header.flags & kFlagNoExtrapolation) || d == 0;
+    for (uint64_t c = 0; c < s.cell_count; ++c) {
+        const CellRecord<Index>& r = records[c];
+        const bool is_inner = c < inner;
+        for (uint32_t k = 0; k < 4; ++k) {
+            const uint32_t n = widen_index(r.neighbours[k]);
+            const std::string where = "cell " + std::to_string(c) + " neighbour " + std::to_string(k);
+            if (k > d) {
+                if (n != kNone32) reject(where + " is above the dimension and must be none");
+                continue;
+            }
+            if (n == kNone32) {
+                // Without extrapolation the hull has no neighbours; a line's outer cell has no outer neighbour.
+                const bool allowed = is_inner ? may_lack_neighbours : (d == 1 && k < d);
+                if (!allowed) reject(where + " is missing");
+                continue;
+            }
+            if (n >= s.cell_count) reject(where + " is not a cell");
+            if (!is_inner && k == d && n >= inner) reject(where + " of an outer cell must be the inner cell it rests on");
+            if (!is_inner && k < d && n < inner) reject(where + " of an outer cell must be an outer cell");
+            // The neighbour lists c back and holds every vertex of the facet opposite slot k.
+            const CellRecord<Index>& m = records[n];
+            bool listed = false;
+            for (uint32_t j = 0; j < 4; ++j) listed |= widen_index(m.neighbours[j]) == c;
+            if (!listed) reject(where + " = " + std::to_string(n) + " does not list cell " + std::to_string(c) + " back");
+            for (uint32_t j = 0; j <= d; ++j) {
+                if (j == k) continue;
+                bool shared = false;
+                for (uint32_t i = 0; i <= d; ++i) shared |= m.vertices[i] == r.vertices[j];
+                if (!shared) reject(where + " = " + std::to_string(n) + " does not share the facet opposite slot " +
+                                    std::to_string(k));
+            }
+        }
+        if (!is_inner || d < 1) continue;
+        // Inner cells are positively oriented (or flat), exactly, on the stored positions.
+        const float* p[4];
+        for (uint32_t k = 0; k <= d; ++k) p[k] = s.positions + 3 * size_t(r.vertices[k]);
+        int sign = 1;
+        if (d == 3) {
+            sign = orient3d(p[0], p[1], p[2], p[3]);
+        } else if (d == 2) {
+            float uv[3][2];
+            for (uint32_t k = 0; k < 3; ++k) project_to_plane(p[k], s.axis, uv[k]);
+            sign = orient2d(uv[0], uv[1], uv[2]);
+        } else {
+            sign = p[1][s.axis] > p[0][s.axis] ? 1 : (p[1][s.axis] == p[0][s.axis] ? 0 : -1);
+        }
+        if (sign < 0) reject("inner cell " + std::to_string(c) + " is negatively oriented");
+    }
 }
 
 }  // namespace
 
 void validate_store_blob(const uint8_t* data, size_t size) {
+    if (size >= kFormatVersionOffset + sizeof(uint32_t) && std::memcmp(data, kStoreMagic, sizeof kStoreMagic) == 0) {
+        uint32_t version;
+        std::memcpy(&version, data + kFormatVersionOffset, sizeof version);
+        if (version != kStoreFormatVersion)
+            throw Error(Status::version, "store blob has format version " + std::to_string(version) +
+                                             "; this library reads version " + std::to_string(kStoreFormatVersion) +
+                                             ": rebuild the store from its probes with this library");
+    }
     StoreHeader h;
     if (size < sizeof h)
         reject("truncated: " + std::to_string(size) + " bytes, the header alone is " + std::to_string(sizeof h));
     std::memcpy(&h, data, sizeof h);
     if (std::memcmp(h.magic, kStoreMagic, sizeof h.magic) != 0) reject("bad magic (not a tetprobe store)");
-    if (h.format_version != kStoreFormatVersion)
-        throw Error(TP_ERROR_VERSION, "store blob has format version " + std::to_string(h.format_version) +
-                                          "; this library reads version " + std::to_string(kStoreFormatVersion));
     check_header(h, size);
     SectionEntry table[kSectionCount];
     check_sections(data, size, h, table);
@@ -189,11 +221,17 @@ void validate_store_blob(const uint8_t* data, size_t size) {
     const uint64_t computed = store_checksum(data, size);
     if (stored != computed) reject("checksum mismatch (the blob is corrupt)");
     check_probes(data, h, table);
-    check_matrices(data, h, table);
     if (h.flags & kFlagIndex32)
-        check_cells<uint32_t>(data, h, table);
+        check_cell_indices<uint32_t>(data, h, table);
     else
-        check_cells<uint16_t>(data, h, table);
+        check_cell_indices<uint16_t>(data, h, table);
+}
+
+void validate_cell_records(const Store::Impl& store) {
+    if (store.index32)
+        check_records<uint32_t>(store);
+    else
+        check_records<uint16_t>(store);
 }
 
 }  // namespace tetprobe

@@ -1,4 +1,4 @@
-// write_store_blob: StoreData -> the version-1 blob laid out as store_format.h describes.
+// write_store_blob: StoreData -> the format-3 blob laid out as store_format.h describes (fast or compact).
 #include "core/error.h"
 #include "core/half.h"
 #include "core/store.h"
@@ -20,7 +20,7 @@ namespace {
 constexpr float kHalfMax = 65504.0f;
 
 void require(bool condition, const std::string& message) {
-    if (!condition) throw Error(TP_ERROR_INVALID_ARGUMENT, "store data: " + message);
+    if (!condition) throw Error(Status::invalid_argument, "store data: " + message);
 }
 
 void require_size(size_t actual, uint64_t expected, const char* what) {
@@ -55,13 +55,14 @@ void write_indices(uint8_t* out, const std::vector<uint32_t>& indices, bool inde
     }
 }
 
-void write_sh(uint8_t* out, const std::vector<float>& sh) {
+// 27 halves per probe at `halves` per probe (the padding stays zero).
+void write_sh(uint8_t* out, const std::vector<float>& sh, uint32_t halves) {
     for (size_t i = 0; i < sh.size(); ++i) {
         float value = sh[i];
         require(std::isfinite(value), "sh[" + std::to_string(i) + "] is not finite");
         value = std::fmax(-kHalfMax, std::fmin(kHalfMax, value));
         const uint16_t half = float_to_half(value);
-        std::memcpy(out + i * sizeof half, &half, sizeof half);
+        std::memcpy(out + ((i / 27) * halves + i % 27) * sizeof half, &half, sizeof half);
     }
 }
 
@@ -75,19 +76,16 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
             "counts do not fit 32-bit indices");
     require(data.cell_vertices.size() % 4 == 0, "cell_vertices is not 4 per cell");
     require(data.dimension <= 3, "dimension " + std::to_string(data.dimension) + " is above 3");
+    require(data.axis <= 2, "axis " + std::to_string(data.axis) + " is above 2");
     require(data.inner_cell_count <= cells, "inner_cell_count exceeds the cell count");
     require_size(data.positions.size(), probes * 3, "positions");
     require_size(data.normals.size(), probes * 3, "normals");
     require_size(data.sh.size(), probes * 27, "sh");
     require_size(data.input_remap.size(), data.input_probe_count, "input_remap");
     require_size(data.cell_neighbours.size(), cells * 4, "cell_neighbours");
-    require_size(data.inner_matrices.size(), uint64_t(data.inner_cell_count) * 12, "inner_matrices");
-    require_size(data.outer_matrices.size(), (cells - data.inner_cell_count) * 16, "outer_matrices");
     require_size(data.grid_cells.size(), uint64_t(data.grid[0]) * data.grid[1] * data.grid[2], "grid_cells");
     require_finite(data.positions, "positions");
     require_finite(data.normals, "normals");
-    require_finite(data.inner_matrices, "inner_matrices");
-    require_finite(data.outer_matrices, "outer_matrices");
     for (int k = 0; k < 3; ++k)
         require(std::isfinite(data.origin[k]) && std::isfinite(data.bounds_min[k]) &&
                     std::isfinite(data.bounds_max[k]),
@@ -101,8 +99,10 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     std::memcpy(header.magic, kStoreMagic, sizeof header.magic);
     header.format_version = kStoreFormatVersion;
     header.header_size = uint32_t(kHeaderSize);
-    header.flags = (data.flags & kFlagNoExtrapolation) | (index32 ? kFlagIndex32 : 0u);
+    header.flags = (data.flags & (kFlagNoExtrapolation | kFlagCompact)) | (index32 ? kFlagIndex32 : 0u);
+    const bool compact = (data.flags & kFlagCompact) != 0;
     header.dimension = data.dimension;
+    header.axis = data.dimension == 1 || data.dimension == 2 ? data.axis : 0;
     header.probe_count = uint32_t(probes);
     header.input_probe_count = data.input_probe_count;
     header.cell_count = uint32_t(cells);
@@ -137,13 +137,18 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     };
     copy_floats(kSectionPositions, data.positions);
     copy_floats(kSectionNormals, data.normals);
-    write_sh(base + table[kSectionSh].offset, data.sh);
+    write_sh(base + table[kSectionSh].offset, data.sh, compact ? kShHalvesCompact : kShHalvesFast);
     copy_words(kSectionProbeSource, data.probe_source);
     copy_words(kSectionInputRemap, data.input_remap);
-    write_indices(base + table[kSectionCellVertices].offset, data.cell_vertices, index32, "cell_vertices");
-    write_indices(base + table[kSectionCellNeighbours].offset, data.cell_neighbours, index32, "cell_neighbours");
-    copy_floats(kSectionInnerMatrices, data.inner_matrices);
-    copy_floats(kSectionOuterMatrices, data.outer_matrices);
+    // Fast: {vertices[4], neighbours[4]} per cell; compact: vertices[4] only.
+    std::vector<uint32_t> cell_indices;
+    cell_indices.reserve(cells * (compact ? 4 : 8));
+    for (size_t c = 0; c < cells; ++c) {
+        cell_indices.insert(cell_indices.end(), &data.cell_vertices[4 * c], &data.cell_vertices[4 * c] + 4);
+        if (!compact)
+            cell_indices.insert(cell_indices.end(), &data.cell_neighbours[4 * c], &data.cell_neighbours[4 * c] + 4);
+    }
+    write_indices(base + table[kSectionCells].offset, cell_indices, index32, "cells");
     write_indices(base + table[kSectionGrid].offset, data.grid_cells, index32, "grid_cells");
 
     const uint64_t checksum = store_checksum(base, blob.size());
