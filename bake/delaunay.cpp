@@ -15,11 +15,6 @@ namespace tetprobe {
 
 namespace {
 
-std::mutex& tetgen_mutex() {
-    static std::mutex mutex;
-    return mutex;
-}
-
 // Slot of `cell` whose vertex does not appear in `other` (the shared facet is opposite it), or -1.
 int slot_not_shared(const int* cell, const int* other) {
     int found = -1;
@@ -115,15 +110,18 @@ SimplexMesh delaunay_tetrahedralize(const std::vector<Eigen::Vector3d>& points) 
             mesh.vertices[size_t(t)][size_t(k)] = uint32_t(v);
         }
     }
-    // TetGen lists four neighbours per tetrahedron; place each at the slot of the vertex it does not
-    // share, which is the store's convention whatever TetGen's own order.
+    // TetGen's own neighbour lists: each at the slot of the vertex it does not share, which is the
+    // store's convention. TetGen 1.5 lists neighbour j opposite corner j, so the check is four
+    // comparisons (the neighbour does not hold corner j); another order falls back to a search.
     for (int t = 0; t < count; ++t) {
         const int* cell = &out.tetrahedronlist[t * corners];
         for (int j = 0; j < 4; ++j) {
             const int n = out.neighborlist[t * 4 + j];
             if (n < 0) continue;
             if (n >= count) throw Error(TP_ERROR_TETGEN, "TetGen returned a bad neighbour index");
-            const int slot = slot_not_shared(cell, &out.tetrahedronlist[n * corners]);
+            const int* other = &out.tetrahedronlist[n * corners];
+            const bool opposite_j = other[0] != cell[j] && other[1] != cell[j] && other[2] != cell[j] && other[3] != cell[j];
+            const int slot = opposite_j ? j : slot_not_shared(cell, other);
             if (slot < 0) throw Error(TP_ERROR_TETGEN, "TetGen returned neighbours that share no facet");
             mesh.neighbours[size_t(t)][size_t(slot)] = uint32_t(n);
         }

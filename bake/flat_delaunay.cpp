@@ -4,6 +4,7 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace tetprobe {
 
@@ -61,6 +62,13 @@ SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
             vertices[size_t(slot)] = v[size_t(k)];
             neighbours[size_t(slot)] = tets.neighbours[t][size_t(k)];
             ++slot;
+        }
+        // orient3d(t0, t1, t2, apex) = orient2d(t0, t1, t2) x height, and moving the apex from its slot
+        // to slot 3 takes 3 - apex_slot transpositions: undoing an odd count keeps every triangle
+        // wound as its tetrahedron (TetGen winds them all alike), even a triangle of collinear probes.
+        if ((3 - apex_slot) % 2 != 0) {
+            std::swap(vertices[0], vertices[1]);
+            std::swap(neighbours[0], neighbours[1]);
         }
         mesh.add_cell(vertices, neighbours);
     }
