@@ -9,7 +9,7 @@
 namespace tetprobe {
 
 SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
-    if (uv.size() < 3) throw Error(TP_ERROR_INTERNAL, "triangulation needs at least 3 points");
+    if (uv.size() < 3) throw Error(Status::internal, "triangulation needs at least 3 points");
     Eigen::Vector2d lo = uv[0], hi = uv[0], centroid = Eigen::Vector2d::Zero();
     for (const auto& p : uv) {
         lo = lo.cwiseMin(p);
@@ -53,7 +53,7 @@ SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
         const CellSlots& v = tets.vertices[t];
         const auto apex_slot = std::find(v.begin(), v.end(), apex) - v.begin();
         if (apex_slot == 4) {
-            throw Error(TP_ERROR_TETGEN, "TetGen returned a flat tetrahedron in a plane triangulation");
+            throw Error(Status::tetgen, "TetGen returned a flat tetrahedron in a plane triangulation");
         }
         CellSlots vertices = kNoSlots, neighbours = kNoSlots;
         int slot = 0;

@@ -67,7 +67,7 @@ OuterCells build_outer_cells(SimplexMesh& inner, const Hull& hull) {
     }
     for (uint32_t i = 0; i < count; ++i) {
         for (uint32_t k = 0; k < d && d >= 2; ++k) {
-            if (outer.neighbours[i][k] == kNone32) throw Error(TP_ERROR_INTERNAL, "hull is not closed");
+            if (outer.neighbours[i][k] == kNone32) throw Error(Status::internal, "hull is not closed");
         }
     }
     return outer;

@@ -28,19 +28,19 @@ namespace {
 
 void report_progress(const BuildSettings& settings, float fraction, const char* stage) {
     if (settings.progress && settings.progress(settings.progress_user, fraction, stage) != 0) {
-        throw Error(TP_ERROR_CANCELLED, "build cancelled");
+        throw Error(Status::cancelled, "build cancelled");
     }
 }
 
 void check_settings(const BuildSettings& settings) {
     if (settings.flags & ~uint32_t(TP_BUILD_NO_EXTRAPOLATION | TP_BUILD_INDEX32 | TP_BUILD_COMPACT)) {
-        throw Error(TP_ERROR_INVALID_ARGUMENT, "unknown build flags " + std::to_string(settings.flags));
+        throw Error(Status::invalid_argument, "unknown build flags " + std::to_string(settings.flags));
     }
     if (!(settings.merge_tolerance >= 0 && settings.merge_tolerance <= 1)) {
-        throw Error(TP_ERROR_INVALID_ARGUMENT, "merge_tolerance must be in [0, 1]");
+        throw Error(Status::invalid_argument, "merge_tolerance must be in [0, 1]");
     }
     if (!(settings.flat_tolerance >= 0 && settings.flat_tolerance <= 0.1)) {
-        throw Error(TP_ERROR_INVALID_ARGUMENT, "flat_tolerance must be in [0, 0.1]");
+        throw Error(Status::invalid_argument, "flat_tolerance must be in [0, 0.1]");
     }
 }
 

@@ -21,8 +21,8 @@ struct BuildSettings {
     void* progress_user = nullptr;
 };
 
-// Throws tetprobe::Error (TP_ERROR_INVALID_ARGUMENT, TP_ERROR_DEGENERATE, TP_ERROR_TETGEN,
-// TP_ERROR_CANCELLED) on failure. positions: 3 floats per probe at position_stride bytes;
+// Throws tetprobe::Error (Status::invalid_argument, degenerate, tetgen,
+// cancelled) on failure. positions: 3 floats per probe at position_stride bytes;
 // sh: 27 floats per probe at sh_stride bytes, or nullptr for zeros. Strides are already resolved (> 0).
 StoreData build_store_data(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
                            size_t count, const BuildSettings& settings);
