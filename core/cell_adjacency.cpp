@@ -52,7 +52,10 @@ void rebuild_neighbours(CellRecord<Index>* records, uint32_t count, uint32_t dim
             facets.push_back(e);
         }
     }
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Warray-bounds"  // GCC 12 misreads std::sort's insertion step here
     std::sort(facets.begin(), facets.end());
+#pragma GCC diagnostic pop
     for (size_t i = 0; i < facets.size();) {
         size_t j = i + 1;
         while (j < facets.size() && facets[j].key == facets[i].key) ++j;
