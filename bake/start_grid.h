@@ -8,7 +8,7 @@
 
 namespace tetprobe {
 
-constexpr uint32_t kMaxStartGridCells = 32768;
+constexpr uint32_t kMaxStartGridCells = 1u << 22;
 
 // Grid dimensions over the extents: proportional to them, about (inner_cells / 4)^(1/3) per axis for a
 // cube, each >= 1, product <= kMaxStartGridCells; a flat extent gets 1.

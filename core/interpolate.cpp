@@ -26,24 +26,41 @@ T* strided(T* base, size_t i, size_t stride) {
     return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + i * stride);
 }
 
-// Runs query(i, hint) -> Location for i in [begin, end), reading and writing the hints, and
-// returns the first index that was outside (or end).
+// Queries located before any is answered: their walks are independent, so the processor overlaps
+// them, and the cells of the group after next are prefetched.
+constexpr size_t kGroup = 8;
+
+// Runs the queries [begin, end) in groups: locate each (reading and writing the hints), then hand
+// every location to answer(i, loc). Returns the first index that was outside (or end).
 template <class Answer>
 size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* positions, size_t position_stride,
                  int32_t* hints, size_t hint_stride, bool chain_hints, Answer answer) {
     size_t first_outside = end;
     int32_t chained = -1;
-    for (size_t i = begin; i < end; ++i) {
-        float world[3], q[3];
-        std::memcpy(world, strided(positions, i, position_stride), sizeof world);
-        local_position(s, world, q);
-        int32_t hint = chain_hints ? chained : -1;
-        if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
-        const Location loc = locate_local(s, q, hint);
-        chained = loc.cell;
-        if (hints) std::memcpy(strided(hints, i, hint_stride), &loc.cell, sizeof loc.cell);
-        if (loc.status != Status::ok && first_outside == end) first_outside = i;
-        answer(i, loc);
+    Location located[kGroup];
+    for (size_t group = begin; group < end; group += kGroup) {
+        const size_t count = std::min(kGroup, end - group);
+        if (hints) {
+            const size_t ahead = group + 2 * kGroup;
+            for (size_t i = ahead; i < std::min(ahead + kGroup, end); ++i) {
+                int32_t hint;
+                std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
+                prefetch_cell(s, hint);
+            }
+        }
+        for (size_t j = 0; j < count; ++j) {
+            const size_t i = group + j;
+            float world[3], q[3];
+            std::memcpy(world, strided(positions, i, position_stride), sizeof world);
+            local_position(s, world, q);
+            int32_t hint = chain_hints ? chained : -1;
+            if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
+            located[j] = locate_local(s, q, hint);
+            chained = located[j].cell;
+            if (hints) std::memcpy(strided(hints, i, hint_stride), &located[j].cell, sizeof located[j].cell);
+            if (located[j].status != Status::ok && first_outside == end) first_outside = i;
+        }
+        for (size_t j = 0; j < count; ++j) answer(group + j, located[j]);
     }
     return first_outside;
 }

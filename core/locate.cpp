@@ -590,6 +590,25 @@ Location locate_local(const Store::Impl& store, const float local[3], int32_t hi
     return store.index32 ? walk<uint32_t>(store, local, hint) : walk<uint16_t>(store, local, hint);
 }
 
+namespace {
+template <class Index>
+void prefetch_cell_typed(const Store::Impl& s, uint32_t cell) {
+    const CellRecord<Index>& r = static_cast<const CellRecord<Index>*>(s.cells)[cell];
+    for (int k = 0; k < 4; ++k) {
+        const uint32_t v = r.vertices[k];
+        if (v < s.probe_count) __builtin_prefetch(s.positions + 3 * size_t(v));
+    }
+}
+}  // namespace
+
+void prefetch_cell(const Store::Impl& store, int32_t cell) {
+    if (cell < 0 || uint32_t(cell) >= store.cell_count) return;
+    if (store.index32)
+        prefetch_cell_typed<uint32_t>(store, uint32_t(cell));
+    else
+        prefetch_cell_typed<uint16_t>(store, uint32_t(cell));
+}
+
 Location locate_exhaustive(const Store::Impl& store, const float local[3], bool outer_only) {
     return store.index32 ? search<uint32_t>(store, local, outer_only) : search<uint16_t>(store, local, outer_only);
 }

@@ -18,6 +18,10 @@ void local_position(const Store::Impl& store, const float world[3], float local[
 // Finds the cell holding a local position, starting from hint (-1 or out of range: the grid).
 Location locate_local(const Store::Impl& store, const float local[3], int32_t hint);
 
+// Asks the memory system early for what a walk from cell will read first: the cell's record and its
+// vertices' positions (a batch calls it a few queries ahead, so that queries overlap their misses).
+void prefetch_cell(const Store::Impl& store, int32_t cell);
+
 // The cell decided over all cells (an inner cell that holds the point exactly, else the best outer
 // cell), or over the outer cells alone (cell -1 when none holds it). O(cells); never allocates.
 Location locate_exhaustive(const Store::Impl& store, const float local[3], bool outer_only);
