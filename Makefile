@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 
-.PHONY: deps build demo test test-fast sanitize fuzz fuzz-short bench clean
+.PHONY: deps build demo test test-fast sanitize tsan fuzz fuzz-short bench clean
 
 deps:
 	bash .ci/install-deps.sh
@@ -16,7 +16,7 @@ demo: build
 	$(BUILD)/samples/tetprobe demo --out $(BUILD)/demo
 
 # Every test: the normal build, the ASan+UBSan build of the whole suite, and a short fuzz run.
-test: test-fast sanitize fuzz-short
+test: test-fast sanitize tsan fuzz-short
 
 test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -27,6 +27,15 @@ sanitize: deps
 	cmake --build $(BUILD)-asan -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --test-dir $(BUILD)-asan --output-on-failure -j $(JOBS) -L 'unit|c'
+
+# ThreadSanitizer: the tests that query one store from many threads, the batches on threads, and
+# the multi-threaded bake (Embree's own thread pool is suppressed by name in tests/tsan.supp).
+tsan: deps
+	cmake -S . -B $(BUILD)-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETPROBE_TSAN=ON \
+	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
+	cmake --build $(BUILD)-tsan -j $(JOBS) --target tetprobe_tests
+	TSAN_OPTIONS="halt_on_error=1 suppressions=$(CURDIR)/tests/tsan.supp" \
+	  $(BUILD)-tsan/tests/tetprobe_tests "[threads]"
 
 fuzz-build: deps
 	cmake -S . -B $(BUILD)-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETPROBE_FUZZ=ON \
@@ -44,4 +53,4 @@ bench: build
 	$(BUILD)/samples/tetprobe_bench
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-fuzz
+	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-tsan $(BUILD)-fuzz

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <numeric>
+#include <tuple>
 #include <utility>
 
 namespace tetprobe {
@@ -20,69 +21,98 @@ uint64_t spread_bits(uint64_t x) {
     return x;
 }
 
-// Centroid of the probes in a cell's vertex slots (kOuter32 / kNone32 slots skipped).
-void cell_centroid(const StoreData& data, uint32_t cell, float out[3]) {
-    double sum[3] = {0, 0, 0};
-    int count = 0;
-    for (int k = 0; k < 4; ++k) {
-        const uint32_t v = data.cell_vertices[size_t(cell) * 4 + size_t(k)];
-        if (v >= kOuter32) continue;
-        for (int a = 0; a < 3; ++a) sum[a] += data.positions[size_t(v) * 3 + size_t(a)];
-        ++count;
+// Stable LSD radix sort of indices by a 32-bit key (four 8-bit passes, no comparisons).
+void radix_sort_by_key(std::vector<uint32_t>& keys, std::vector<uint32_t>& items) {
+    std::vector<uint32_t> key_buffer(keys.size()), item_buffer(items.size());
+    for (int shift = 0; shift < 32; shift += 8) {
+        size_t counts[257] = {};
+        for (uint32_t k : keys) ++counts[((k >> shift) & 0xFFu) + 1];
+        for (int b = 0; b < 256; ++b) counts[b + 1] += counts[b];
+        for (size_t i = 0; i < keys.size(); ++i) {
+            const size_t to = counts[(keys[i] >> shift) & 0xFFu]++;
+            key_buffer[to] = keys[i];
+            item_buffer[to] = items[i];
+        }
+        keys.swap(key_buffer);
+        items.swap(item_buffer);
     }
-    for (int a = 0; a < 3; ++a) out[a] = count ? float(sum[a] / count) : 0.0f;
 }
 
 }  // namespace
 
-uint64_t morton_code(const float p[3], const float lo[3], const float hi[3]) {
+uint64_t morton_code(const double p[3], const double lo[3], const double hi[3]) {
     uint64_t code = 0;
     for (int a = 0; a < 3; ++a) {
-        const double extent = double(hi[a]) - double(lo[a]);
-        double f = extent > 0 ? (double(p[a]) - double(lo[a])) / extent : 0.0;
+        const double extent = hi[a] - lo[a];
+        double f = extent > 0 ? (p[a] - lo[a]) / extent : 0.0;
         f = std::min(std::max(f, 0.0), 1.0);
         code |= spread_bits(uint64_t(f * double(0x1FFFFF))) << a;
     }
     return code;
 }
 
+std::vector<uint32_t> curve_order(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& lo,
+                                  const Eigen::Vector3d& hi) {
+    std::vector<uint64_t> codes(points.size());
+    for (size_t i = 0; i < points.size(); ++i) codes[i] = morton_code(points[i].data(), lo.data(), hi.data());
+    std::vector<uint32_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const Eigen::Vector3d &p = points[a], &q = points[b];
+        return std::tie(codes[a], p.x(), p.y(), p.z(), a) < std::tie(codes[b], q.x(), q.y(), q.z(), b);
+    });
+    return order;
+}
+
 void order_cells_for_locality(StoreData& data) {
     const uint32_t cells = data.cell_count(), inner = data.inner_cell_count;
-    std::vector<uint64_t> codes(cells);
-    std::vector<float> centroids(size_t(cells) * 3);
-    for (uint32_t c = 0; c < cells; ++c) {
-        cell_centroid(data, c, &centroids[size_t(c) * 3]);
-        codes[c] = morton_code(&centroids[size_t(c) * 3], data.bounds_min, data.bounds_max);
-    }
-    std::vector<uint32_t> old_of_new(cells);
-    std::iota(old_of_new.begin(), old_of_new.end(), 0u);
-    auto by_code = [&](uint32_t a, uint32_t b) { return codes[a] < codes[b] || (codes[a] == codes[b] && a < b); };
-    std::sort(old_of_new.begin(), old_of_new.begin() + inner, by_code);
-    std::sort(old_of_new.begin() + inner, old_of_new.end(), by_code);
+    const double lo[3] = {data.bounds_min[0], data.bounds_min[1], data.bounds_min[2]};
+    const double hi[3] = {data.bounds_max[0], data.bounds_max[1], data.bounds_max[2]};
+    const double centre[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
 
-    double mean[3] = {0, 0, 0};
-    const uint32_t probes = data.probe_count();
-    for (uint32_t i = 0; i < probes; ++i) {
-        for (int a = 0; a < 3; ++a) mean[a] += data.positions[size_t(i) * 3 + size_t(a)] / double(probes);
-    }
+    // Keys: the top 32 bits of each centroid's Morton code (about 1/2000 of the bounds per axis, finer
+    // than any walk cares about); equal keys keep the triangulation's order.
+    std::vector<uint32_t> keys(cells), old_of_new(cells);
     uint32_t nearest = 0;
     double nearest_distance = -1;
-    for (uint32_t n = 0; n < inner; ++n) {
-        const float* c = &centroids[size_t(old_of_new[n]) * 3];
-        double d2 = 0;
-        for (int a = 0; a < 3; ++a) d2 += (c[a] - mean[a]) * (c[a] - mean[a]);
-        if (nearest_distance < 0 || d2 < nearest_distance) {
-            nearest_distance = d2;
-            nearest = n;
+    for (uint32_t c = 0; c < cells; ++c) {
+        const uint32_t* v = &data.cell_vertices[size_t(c) * 4];
+        double centroid[3] = {0, 0, 0};
+        int count = 0;
+        for (int k = 0; k < 4; ++k) {
+            if (v[k] >= kOuter32) continue;
+            const float* p = &data.positions[size_t(v[k]) * 3];
+            centroid[0] += p[0];
+            centroid[1] += p[1];
+            centroid[2] += p[2];
+            ++count;
+        }
+        for (double& x : centroid) x /= count;
+        keys[c] = uint32_t(morton_code(centroid, lo, hi) >> 31);
+        old_of_new[c] = c;
+        if (c < inner) {
+            const double d2 = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
+                              (centroid[1] - centre[1]) * (centroid[1] - centre[1]) +
+                              (centroid[2] - centre[2]) * (centroid[2] - centre[2]);
+            if (nearest_distance < 0 || d2 < nearest_distance) {
+                nearest_distance = d2;
+                nearest = c;
+            }
         }
     }
-    if (inner > 0) std::swap(old_of_new[0], old_of_new[nearest]);
+    std::vector<uint32_t> inner_keys(keys.begin(), keys.begin() + inner), outer_keys(keys.begin() + inner, keys.end());
+    std::vector<uint32_t> inner_order(old_of_new.begin(), old_of_new.begin() + inner);
+    std::vector<uint32_t> outer_order(old_of_new.begin() + inner, old_of_new.end());
+    radix_sort_by_key(inner_keys, inner_order);
+    radix_sort_by_key(outer_keys, outer_order);
+    std::copy(inner_order.begin(), inner_order.end(), old_of_new.begin());
+    std::copy(outer_order.begin(), outer_order.end(), old_of_new.begin() + inner);
+    if (inner > 0) std::swap(old_of_new[0], *std::find(old_of_new.begin(), old_of_new.begin() + inner, nearest));
 
     std::vector<uint32_t> new_of_old(cells);
     for (uint32_t n = 0; n < cells; ++n) new_of_old[old_of_new[n]] = n;
 
     std::vector<uint32_t> vertices(data.cell_vertices.size()), neighbours(data.cell_neighbours.size());
-    std::vector<float> inner_matrices(data.inner_matrices.size()), outer_matrices(data.outer_matrices.size());
     for (uint32_t n = 0; n < cells; ++n) {
         const uint32_t o = old_of_new[n];
         for (size_t k = 0; k < 4; ++k) {
@@ -90,16 +120,9 @@ void order_cells_for_locality(StoreData& data) {
             const uint32_t link = data.cell_neighbours[size_t(o) * 4 + k];
             neighbours[size_t(n) * 4 + k] = link < cells ? new_of_old[link] : link;
         }
-        if (n < inner) {
-            std::copy_n(&data.inner_matrices[size_t(o) * 12], 12, &inner_matrices[size_t(n) * 12]);
-        } else {
-            std::copy_n(&data.outer_matrices[size_t(o - inner) * 16], 16, &outer_matrices[size_t(n - inner) * 16]);
-        }
     }
     data.cell_vertices = std::move(vertices);
     data.cell_neighbours = std::move(neighbours);
-    data.inner_matrices = std::move(inner_matrices);
-    data.outer_matrices = std::move(outer_matrices);
 }
 
 }  // namespace tetprobe

@@ -15,11 +15,6 @@ namespace tetprobe {
 
 namespace {
 
-std::mutex& tetgen_mutex() {
-    static std::mutex mutex;
-    return mutex;
-}
-
 // Slot of `cell` whose vertex does not appear in `other` (the shared facet is opposite it), or -1.
 int slot_not_shared(const int* cell, const int* other) {
     int found = -1;
@@ -72,11 +67,11 @@ void run_tetgen(void* context) {
 
 SimplexMesh delaunay_tetrahedralize(const std::vector<Eigen::Vector3d>& points) {
     // Last line of defence: these inputs crash TetGen, so they must never reach it.
-    if (points.size() < 4) throw Error(TP_ERROR_INTERNAL, "tetrahedralization needs at least 4 points");
+    if (points.size() < 4) throw Error(Status::internal, "tetrahedralization needs at least 4 points");
     for (const auto& p : points) {
-        if (!p.allFinite()) throw Error(TP_ERROR_INTERNAL, "non-finite point reached the tetrahedralization");
+        if (!p.allFinite()) throw Error(Status::internal, "non-finite point reached the tetrahedralization");
     }
-    if (points.size() > size_t(INT32_MAX / 4)) throw Error(TP_ERROR_INVALID_ARGUMENT, "too many points for TetGen");
+    if (points.size() > size_t(INT32_MAX / 4)) throw Error(Status::invalid_argument, "too many points for TetGen");
 
     // TetGen sometimes dies on a set it handles fine with its axes cycled (an exact rotation that
     // keeps every tetrahedron's orientation), so a crash is contained and retried that way.
@@ -90,17 +85,17 @@ SimplexMesh delaunay_tetrahedralize(const std::vector<Eigen::Vector3d>& points) 
         if (!survived) call.in = call.out = nullptr;  // leaked on purpose: TetGen died holding them
     }
     if (!survived) {
-        throw Error(TP_ERROR_TETGEN, "TetGen crashed on this probe set (contained; tried 3 orientations)");
+        throw Error(Status::tetgen, "TetGen crashed on this probe set (contained; tried 3 orientations)");
     }
     std::unique_ptr<tetgenio> in_owner(call.in), out_owner(call.out);
     if (call.out_of_memory) throw std::bad_alloc();
     if (call.error_code != 0) {
-        throw Error(TP_ERROR_TETGEN, "TetGen failed with code " + std::to_string(call.error_code));
+        throw Error(Status::tetgen, "TetGen failed with code " + std::to_string(call.error_code));
     }
     const tetgenio& out = *call.out;
 
     if (out.numberoftetrahedra <= 0 || !out.tetrahedronlist || !out.neighborlist || out.numberofcorners < 4) {
-        throw Error(TP_ERROR_TETGEN, "TetGen returned no tetrahedra");
+        throw Error(Status::tetgen, "TetGen returned no tetrahedra");
     }
     SimplexMesh mesh;
     mesh.dimension = 3;
@@ -111,20 +106,23 @@ SimplexMesh delaunay_tetrahedralize(const std::vector<Eigen::Vector3d>& points) 
     for (int t = 0; t < count; ++t) {
         for (int k = 0; k < 4; ++k) {
             const int v = out.tetrahedronlist[t * corners + k];
-            if (v < 0 || size_t(v) >= points.size()) throw Error(TP_ERROR_TETGEN, "TetGen returned a bad vertex index");
+            if (v < 0 || size_t(v) >= points.size()) throw Error(Status::tetgen, "TetGen returned a bad vertex index");
             mesh.vertices[size_t(t)][size_t(k)] = uint32_t(v);
         }
     }
-    // TetGen lists four neighbours per tetrahedron; place each at the slot of the vertex it does not
-    // share, which is the store's convention whatever TetGen's own order.
+    // TetGen's own neighbour lists: each at the slot of the vertex it does not share, which is the
+    // store's convention. TetGen 1.5 lists neighbour j opposite corner j, so the check is four
+    // comparisons (the neighbour does not hold corner j); another order falls back to a search.
     for (int t = 0; t < count; ++t) {
         const int* cell = &out.tetrahedronlist[t * corners];
         for (int j = 0; j < 4; ++j) {
             const int n = out.neighborlist[t * 4 + j];
             if (n < 0) continue;
-            if (n >= count) throw Error(TP_ERROR_TETGEN, "TetGen returned a bad neighbour index");
-            const int slot = slot_not_shared(cell, &out.tetrahedronlist[n * corners]);
-            if (slot < 0) throw Error(TP_ERROR_TETGEN, "TetGen returned neighbours that share no facet");
+            if (n >= count) throw Error(Status::tetgen, "TetGen returned a bad neighbour index");
+            const int* other = &out.tetrahedronlist[n * corners];
+            const bool opposite_j = other[0] != cell[j] && other[1] != cell[j] && other[2] != cell[j] && other[3] != cell[j];
+            const int slot = opposite_j ? j : slot_not_shared(cell, other);
+            if (slot < 0) throw Error(Status::tetgen, "TetGen returned neighbours that share no facet");
             mesh.neighbours[size_t(t)][size_t(slot)] = uint32_t(n);
         }
     }

@@ -13,7 +13,7 @@ namespace tetprobe {
 // dimension detection and merging guarantee it, because TetGen aborts the process otherwise).
 // Returns a dimension-3 mesh; TetGen may leave a point unused, which the caller checks. Calls into
 // TetGen are serialised process-wide (its predicates keep global state); its int throws become
-// Error(TP_ERROR_TETGEN).
+// Error(Status::tetgen).
 SimplexMesh delaunay_tetrahedralize(const std::vector<Eigen::Vector3d>& points);
 
 }  // namespace tetprobe

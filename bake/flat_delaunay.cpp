@@ -4,11 +4,12 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace tetprobe {
 
 SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
-    if (uv.size() < 3) throw Error(TP_ERROR_INTERNAL, "triangulation needs at least 3 points");
+    if (uv.size() < 3) throw Error(Status::internal, "triangulation needs at least 3 points");
     Eigen::Vector2d lo = uv[0], hi = uv[0], centroid = Eigen::Vector2d::Zero();
     for (const auto& p : uv) {
         lo = lo.cwiseMin(p);
@@ -52,7 +53,7 @@ SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
         const CellSlots& v = tets.vertices[t];
         const auto apex_slot = std::find(v.begin(), v.end(), apex) - v.begin();
         if (apex_slot == 4) {
-            throw Error(TP_ERROR_TETGEN, "TetGen returned a flat tetrahedron in a plane triangulation");
+            throw Error(Status::tetgen, "TetGen returned a flat tetrahedron in a plane triangulation");
         }
         CellSlots vertices = kNoSlots, neighbours = kNoSlots;
         int slot = 0;
@@ -61,6 +62,13 @@ SimplexMesh delaunay_triangulate_plane(const std::vector<Eigen::Vector2d>& uv) {
             vertices[size_t(slot)] = v[size_t(k)];
             neighbours[size_t(slot)] = tets.neighbours[t][size_t(k)];
             ++slot;
+        }
+        // orient3d(t0, t1, t2, apex) = orient2d(t0, t1, t2) x height, and moving the apex from its slot
+        // to slot 3 takes 3 - apex_slot transpositions: undoing an odd count keeps every triangle
+        // wound as its tetrahedron (TetGen winds them all alike), even a triangle of collinear probes.
+        if ((3 - apex_slot) % 2 != 0) {
+            std::swap(vertices[0], vertices[1]);
+            std::swap(neighbours[0], neighbours[1]);
         }
         mesh.add_cell(vertices, neighbours);
     }

@@ -19,14 +19,14 @@ double corner_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
 }
 
 void add_facets_3d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, Hull& hull) {
+    // The facet opposite slot k, ordered so that orient3d(facet, v[k]) = -orient3d(v0, v1, v2, v3):
+    // outward for a positively oriented cell, with no arithmetic (a flat cell's facet included).
     static const int kOthers[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
     for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
         for (uint32_t k = 0; k < 4; ++k) {
             if (mesh.neighbours[c][k] != kNone32) continue;
             const CellSlots& v = mesh.vertices[c];
-            uint32_t a = v[size_t(kOthers[k][0])], b = v[size_t(kOthers[k][1])], d = v[size_t(kOthers[k][2])];
-            const Eigen::Vector3d normal = (p[b] - p[a]).cross(p[d] - p[a]);
-            if (normal.dot(p[v[k]] - p[a]) > 0) std::swap(b, d);
+            const uint32_t a = v[size_t(kOthers[k][0])], b = v[size_t(kOthers[k][1])], d = v[size_t(kOthers[k][2])];
             HullFacet facet;
             facet.probes = {a, b, d, kNone32};
             facet.inner_cell = c;
@@ -46,21 +46,26 @@ void add_facets_3d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& 
     }
 }
 
-void add_facets_2d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& n,
+void add_facets_2d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const SetShape& shape,
                    Hull& hull) {
+    const Eigen::Vector3d& n = shape.axes.col(2);
     for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
         for (uint32_t k = 0; k < 3; ++k) {
             if (mesh.neighbours[c][k] != kNone32) continue;
             const CellSlots& v = mesh.vertices[c];
-            uint32_t a = v[(k + 1) % 3], b = v[(k + 2) % 3];
-            const uint32_t opposite = v[k];
-            if (n.cross(p[b] - p[a]).dot(p[opposite] - p[a]) > 0) std::swap(a, b);
+            // orient2d(v[k+1], v[k+2], v[k]) = orient2d(v0, v1, v2) > 0, so the reverse edge has the
+            // cell on its negative side: outward winding with no arithmetic.
+            const uint32_t a = v[(k + 2) % 3], b = v[(k + 1) % 3];
             HullFacet facet;
             facet.probes = {a, b, kNone32, kNone32};
             facet.inner_cell = c;
             facet.inner_slot = k;
             hull.facets.push_back(facet);
-            const Eigen::Vector3d outward = n.cross(p[b] - p[a]).normalized();
+            // In-plane normal of the edge, turned to the positive (left) side of a -> b in (u, v).
+            Eigen::Vector3d outward = n.cross(p[b] - p[a]).normalized();
+            const Eigen::Vector2d e = shape.plane_coordinates(p[b]) - shape.plane_coordinates(p[a]);
+            const Eigen::Vector2d w = shape.plane_coordinates(outward);
+            if (-e.y() * w.x() + e.x() * w.y() < 0) outward = -outward;
             hull.vertex_normals[a] += outward;
             hull.vertex_normals[b] += outward;
         }
@@ -171,7 +176,7 @@ Hull find_hull(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& posi
     hull.vertex_normals.assign(positions.size(), Eigen::Vector3d::Zero());
     switch (mesh.dimension) {
         case 3: add_facets_3d(mesh, positions, hull); break;
-        case 2: add_facets_2d(mesh, positions, shape.axes.col(2), hull); break;
+        case 2: add_facets_2d(mesh, positions, shape, hull); break;
         case 1: add_facets_1d(mesh, positions, shape.axes.col(0), hull); break;
         default: return hull;
     }

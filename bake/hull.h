@@ -12,8 +12,9 @@
 namespace tetprobe {
 
 struct HullFacet {
-    // d probes (slots 0..d-1, rest kNone32), wound outward: 3D (P1-P0) x (P2-P0) points out of the
-    // hull; 2D ((P1-P0) x (p-P0)) . plane_normal > 0 for p outside; 1D the end probe.
+    // d probes (slots 0..d-1, rest kNone32), wound outward (exact-predicate conventions of
+    // store_format.h, for positively oriented inner cells): 3D orient3d(P0, P1, P2, x) > 0 for x beyond
+    // the facet; 2D orient2d(P0, P1, x) > 0 beyond, in the plane coordinates; 1D the end probe.
     CellSlots probes = kNoSlots;
     uint32_t inner_cell = 0;  // the inner cell the facet bounds
     uint32_t inner_slot = 0;  // that cell's slot opposite the facet

@@ -8,7 +8,7 @@
 namespace tetprobe {
 
 SimplexMesh line_segments(const std::vector<double>& along) {
-    if (along.size() < 2) throw Error(TP_ERROR_INTERNAL, "a line needs at least 2 points");
+    if (along.size() < 2) throw Error(Status::internal, "a line needs at least 2 points");
     std::vector<uint32_t> order(along.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return along[a] < along[b]; });

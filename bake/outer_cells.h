@@ -5,9 +5,6 @@
 #include "bake/hull.h"
 #include "bake/simplex_mesh.h"
 
-#include <Eigen/Core>
-
-#include <array>
 #include <vector>
 
 namespace tetprobe {
@@ -15,15 +12,12 @@ namespace tetprobe {
 struct OuterCells {
     std::vector<CellSlots> vertices;    // probes in slots 0..d-1 (the facet's winding), kOuter32 in slot d
     std::vector<CellSlots> neighbours;  // global cell ids: slot d the inner cell, slots < d outer cells
-    std::vector<std::array<double, 16>> matrices;  // row-major 4x4, see core/store_format.h
 };
 
 // Builds the outer cells of hull over `inner` (whose cells are numbered 0..inner.cell_count()-1; outer
 // cell i becomes global cell inner.cell_count() + i) and links each facet's inner cell to its outer
-// cell. normals are the per-probe ray directions exactly as stored (already rounded to float), so
-// that the polynomial rows agree with what a query recomputes from the blob. plane_normal is used
-// for d = 2. In 1D an outer cell has no outer neighbour (neighbour 0 is kNone32).
-OuterCells build_outer_cells(SimplexMesh& inner, const Hull& hull, const std::vector<Eigen::Vector3d>& positions,
-                             const std::vector<Eigen::Vector3d>& normals, const Eigen::Vector3d& plane_normal);
+// cell. The run time computes an outer cell's polynomial from its probes' positions and normals, so
+// only the links are built here. In 1D an outer cell has no outer neighbour (neighbour 0 is kNone32).
+OuterCells build_outer_cells(SimplexMesh& inner, const Hull& hull);
 
 }  // namespace tetprobe

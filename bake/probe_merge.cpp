@@ -1,67 +1,57 @@
 #include "bake/probe_merge.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
+#include <utility>
 
 namespace tetprobe {
 
 namespace {
 
-struct CellKey {
-    int64_t x, y, z;
-    bool operator==(const CellKey& o) const { return x == o.x && y == o.y && z == o.z; }
-};
-
-struct CellKeyHash {
-    size_t operator()(const CellKey& k) const {
-        uint64_t h = uint64_t(k.x) * 0x9E3779B97F4A7C15ull;
-        h ^= uint64_t(k.y) * 0xC2B2AE3D27D4EB4Full + (h << 6) + (h >> 2);
-        h ^= uint64_t(k.z) * 0x165667B19E3779F9ull + (h << 6) + (h >> 2);
-        return size_t(h);
-    }
-};
+// A direction no lattice or axis plane is aligned with, so that few points share a projection.
+const Eigen::Vector3d kSweepDirection = Eigen::Vector3d(0.5407, 0.5946, 0.5950).normalized();
 
 }  // namespace
 
 ProbeMerge merge_close_points(const std::vector<Eigen::Vector3d>& points, double tolerance) {
+    const size_t n = points.size();
     ProbeMerge merge;
-    merge.group_of.resize(points.size());
+    merge.group_of.resize(n);
 
+    // Candidate pairs by a sweep along one direction: two points within the tolerance are within it
+    // along any unit direction (plus the projections' rounding), so sorting the projections and
+    // scanning a window finds every close pair in O(n log n) for any but pathologically dense sets.
     double extent = 0;
-    for (const auto& p : points) extent = std::max(extent, p.cwiseAbs().maxCoeff());
-    // A cell size far below the coordinates' resolution would overflow the grid keys; at that point
-    // "within tolerance" means "equal", which a cell as small as the coordinates' ulp still finds.
-    const double cell = std::max(tolerance, extent * 1e-15);
-    const bool exact = !(cell > 0);
-
-    std::unordered_map<CellKey, std::vector<uint32_t>, CellKeyHash> grid;  // cell -> survivor slots
-    grid.reserve(points.size());
-    auto key_of = [&](const Eigen::Vector3d& p) {
-        if (exact) return CellKey{0, 0, 0};
-        return CellKey{int64_t(std::floor(p.x() / cell)), int64_t(std::floor(p.y() / cell)),
-                       int64_t(std::floor(p.z() / cell))};
-    };
-
+    std::vector<std::pair<double, uint32_t>> sweep(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        extent = std::max(extent, points[i].cwiseAbs().maxCoeff());
+        sweep[i] = {kSweepDirection.dot(points[i]), i};
+    }
+    std::sort(sweep.begin(), sweep.end());
+    const double window = tolerance + 8 * extent * 0x1p-52;
     const double tolerance2 = tolerance * tolerance;
-    for (uint32_t i = 0; i < points.size(); ++i) {
-        const CellKey key = key_of(points[i]);
+    std::vector<std::pair<uint32_t, uint32_t>> close;  // (later, earlier) in the given order
+    for (size_t a = 0; a < n; ++a) {
+        for (size_t b = a + 1; b < n && sweep[b].first - sweep[a].first <= window; ++b) {
+            const uint32_t i = sweep[a].second, j = sweep[b].second;
+            if ((points[i] - points[j]).squaredNorm() <= tolerance2) close.emplace_back(std::max(i, j), std::min(i, j));
+        }
+    }
+    std::sort(close.begin(), close.end());
+
+    // Greedy in the given order: a point joins the earliest earlier survivor within the tolerance.
+    std::vector<uint32_t> slot_of(n, UINT32_MAX);  // survivor slot of a surviving point
+    size_t next = 0;
+    for (uint32_t i = 0; i < n; ++i) {
         uint32_t best = UINT32_MAX;
-        for (int64_t dx = -1; dx <= 1; ++dx)
-            for (int64_t dy = -1; dy <= 1; ++dy)
-                for (int64_t dz = -1; dz <= 1; ++dz) {
-                    if (exact && (dx || dy || dz)) continue;
-                    auto it = grid.find(CellKey{key.x + dx, key.y + dy, key.z + dz});
-                    if (it == grid.end()) continue;
-                    for (uint32_t slot : it->second) {
-                        if (slot < best && (points[merge.survivors[slot]] - points[i]).squaredNorm() <= tolerance2)
-                            best = slot;
-                    }
-                }
+        for (; next < close.size() && close[next].first == i; ++next) {
+            best = std::min(best, slot_of[close[next].second]);  // earlier survivors have smaller slots
+        }
         if (best == UINT32_MAX) {
             best = uint32_t(merge.survivors.size());
             merge.survivors.push_back(i);
-            grid[key].push_back(best);
+            slot_of[i] = best;
         }
         merge.group_of[i] = best;
     }

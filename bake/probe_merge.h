@@ -16,9 +16,10 @@ struct ProbeMerge {
     size_t merged_count() const { return group_of.size() - survivors.size(); }
 };
 
-// Greedy merge in input order with a hash grid: a point within `tolerance` (inclusive, so 0 merges
-// exact duplicates only) of an earlier survivor joins the earliest such survivor, otherwise it
-// survives itself. Survivors are therefore pairwise farther apart than the tolerance.
+// Greedy merge in the given order: a point within `tolerance` (inclusive, so 0 merges exact
+// duplicates only) of an earlier survivor joins the earliest such survivor, otherwise it survives
+// itself. Survivors are therefore pairwise farther apart than the tolerance. Close pairs are found by
+// a sorted sweep along one direction, O(n log n) unless many points crowd within the tolerance.
 ProbeMerge merge_close_points(const std::vector<Eigen::Vector3d>& points, double tolerance);
 
 }  // namespace tetprobe

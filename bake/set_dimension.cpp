@@ -17,10 +17,22 @@ Eigen::Vector3d SetShape::reduce(const Eigen::Vector3d& p) const {
     }
 }
 
-Eigen::Vector2d SetShape::plane_coordinates(const Eigen::Vector3d& p) const {
+uint32_t SetShape::dropped_axis() const {
     Eigen::Index dropped = 0;
     axes.col(2).cwiseAbs().maxCoeff(&dropped);
-    return Eigen::Vector2d(p[(dropped + 1) % 3], p[(dropped + 2) % 3]);
+    return uint32_t(dropped);
+}
+
+uint32_t SetShape::line_axis() const {
+    Eigen::Index along = 0;
+    axes.col(0).cwiseAbs().maxCoeff(&along);
+    return uint32_t(along);
+}
+
+Eigen::Vector2d SetShape::plane_coordinates(const Eigen::Vector3d& p) const {
+    const uint32_t dropped = dropped_axis();
+    const int u = dropped == 0 ? 1 : 0, v = dropped == 2 ? 1 : 2;  // the other two, in increasing order
+    return Eigen::Vector2d(p[u], p[v]);
 }
 
 SetShape detect_set_dimension(const std::vector<Eigen::Vector3d>& points, double diagonal, double flat_tolerance) {

@@ -22,10 +22,16 @@ struct SetShape {
     // Coordinates of p in the set's own frame reduced to its dimension (unused components zero).
     Eigen::Vector3d reduce(const Eigen::Vector3d& p) const;
 
-    // Flat set: p's two coordinates other than the one along which the normal is largest. Unlike
-    // reduce(), no arithmetic, so probes exactly collinear in space stay exactly collinear for the
-    // triangulation (a rotation rounds them into slivers). An affine map of the plane, exactly a
-    // similarity for a plane at a constant coordinate.
+    // Flat set: the coordinate (0 x, 1 y, 2 z) along which the plane normal is largest (StoreData::axis).
+    uint32_t dropped_axis() const;
+    // Line: the coordinate along which the line direction is largest (StoreData::axis).
+    uint32_t line_axis() const;
+
+    // Flat set: p's two coordinates other than dropped_axis(), in increasing axis order (the run
+    // time's (u, v)). Unlike reduce(), no arithmetic, so the triangulation sees exactly the stored
+    // floats and probes exactly collinear in space stay exactly collinear (a rotation rounds them
+    // into slivers). An affine map of the plane, exactly a similarity for a plane at a constant
+    // coordinate.
     Eigen::Vector2d plane_coordinates(const Eigen::Vector3d& p) const;
 };
 

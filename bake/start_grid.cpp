@@ -1,5 +1,6 @@
 #include "bake/start_grid.h"
 
+#include "bake/exact_orientation.h"
 #include "core/store_format.h"
 
 #include <algorithm>
@@ -9,29 +10,50 @@ namespace tetprobe {
 
 namespace {
 
-// Walks the inner cells towards local point p from `cell` by the most negative barycentric
-// coordinate; stops inside, at the hull, or after a step cap (a cycle is possible only through
-// rounding, and any inner cell is still a valid start).
+// Walks the inner cells towards local point p from `cell`, stepping across any facet that has p
+// strictly on its far side, decided by the exact orientation predicates the run time uses; stops in a
+// cell that holds p, at the hull, or after a step cap (with exact signs a visibility walk on a Delaunay
+// tessellation terminates; the cap only guards flat cells, and any inner cell is a valid start).
 uint32_t walk_inner_cells(const StoreData& data, const double p[3], uint32_t cell) {
     const uint32_t d = data.dimension, inner = data.inner_cell_count;
     if (d == 0) return 0;
-    const uint32_t cap = 64 + 4 * inner;
-    for (uint32_t step = 0; step < cap; ++step) {
-        const float* m = &data.inner_matrices[size_t(cell) * 12];
-        const float* anchor = &data.positions[size_t(data.cell_vertices[size_t(cell) * 4 + d]) * 3];
-        const double q[3] = {p[0] - anchor[0], p[1] - anchor[1], p[2] - anchor[2]};
-        double b[4], sum = 0;
-        for (uint32_t k = 0; k < d; ++k) {
-            b[k] = m[k * 4] * q[0] + m[k * 4 + 1] * q[1] + m[k * 4 + 2] * q[2] + m[k * 4 + 3];
-            sum += b[k];
+    const uint32_t u = data.axis == 0 ? 1 : 0, v = data.axis == 2 ? 1 : 2;  // 2D plane coordinates
+    auto position = [&](uint32_t probe, double out[3]) {
+        const float* x = &data.positions[size_t(probe) * 3];
+        out[0] = x[0];
+        out[1] = x[1];
+        out[2] = x[2];
+    };
+    const double q2[2] = {p[u], p[v]};
+    for (uint32_t step = 0; step < 4096; ++step) {
+        const uint32_t* slots = &data.cell_vertices[size_t(cell) * 4];
+        double x[4][3];
+        for (uint32_t k = 0; k <= d; ++k) position(slots[k], x[k]);
+        uint32_t beyond = 4;  // a slot whose facet has p on its far side
+        if (d == 1) {
+            const uint32_t a = data.axis;
+            if (p[a] < x[0][a]) beyond = 1;
+            else if (p[a] > x[1][a]) beyond = 0;
+        } else if (d == 2) {
+            double y[3][2];
+            for (uint32_t k = 0; k < 3; ++k) {
+                y[k][0] = x[k][u];
+                y[k][1] = x[k][v];
+            }
+            for (uint32_t k = 0; k < 3 && beyond == 4; ++k) {
+                const double* z[3] = {y[0], y[1], y[2]};
+                z[k] = q2;
+                if (orient2d_sign(z[0], z[1], z[2]) < 0) beyond = k;
+            }
+        } else {
+            for (uint32_t k = 0; k < 4 && beyond == 4; ++k) {
+                const double* z[4] = {x[0], x[1], x[2], x[3]};
+                z[k] = p;
+                if (orient3d_sign(z[0], z[1], z[2], z[3]) < 0) beyond = k;
+            }
         }
-        b[d] = 1 - sum;
-        uint32_t worst = 0;
-        for (uint32_t k = 1; k <= d; ++k) {
-            if (b[k] < b[worst]) worst = k;
-        }
-        if (b[worst] >= 0) return cell;
-        const uint32_t next = data.cell_neighbours[size_t(cell) * 4 + worst];
+        if (beyond == 4) return cell;
+        const uint32_t next = data.cell_neighbours[size_t(cell) * 4 + beyond];
         if (next >= inner) return cell;
         cell = next;
     }

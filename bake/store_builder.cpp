@@ -1,11 +1,10 @@
 #include "bake/store_builder.h"
 
-#include "bake/cell_matrices.h"
 #include "bake/cell_order.h"
 #include "bake/delaunay.h"
+#include "bake/exact_orientation.h"
 #include "bake/flat_delaunay.h"
 #include "bake/hull.h"
-#include "bake/hull_slivers.h"
 #include "bake/input_screening.h"
 #include "bake/line_segments.h"
 #include "bake/outer_cells.h"
@@ -29,19 +28,19 @@ namespace {
 
 void report_progress(const BuildSettings& settings, float fraction, const char* stage) {
     if (settings.progress && settings.progress(settings.progress_user, fraction, stage) != 0) {
-        throw Error(TP_ERROR_CANCELLED, "build cancelled");
+        throw Error(Status::cancelled, "build cancelled");
     }
 }
 
 void check_settings(const BuildSettings& settings) {
-    if (settings.flags & ~uint32_t(TP_BUILD_NO_EXTRAPOLATION | TP_BUILD_INDEX32)) {
-        throw Error(TP_ERROR_INVALID_ARGUMENT, "unknown build flags " + std::to_string(settings.flags));
+    if (settings.flags & ~uint32_t(TP_BUILD_NO_EXTRAPOLATION | TP_BUILD_INDEX32 | TP_BUILD_COMPACT)) {
+        throw Error(Status::invalid_argument, "unknown build flags " + std::to_string(settings.flags));
     }
     if (!(settings.merge_tolerance >= 0 && settings.merge_tolerance <= 1)) {
-        throw Error(TP_ERROR_INVALID_ARGUMENT, "merge_tolerance must be in [0, 1]");
+        throw Error(Status::invalid_argument, "merge_tolerance must be in [0, 1]");
     }
     if (!(settings.flat_tolerance >= 0 && settings.flat_tolerance <= 0.1)) {
-        throw Error(TP_ERROR_INVALID_ARGUMENT, "flat_tolerance must be in [0, 0.1]");
+        throw Error(Status::invalid_argument, "flat_tolerance must be in [0, 0.1]");
     }
 }
 
@@ -65,21 +64,33 @@ std::vector<Eigen::Vector3d> gather(const std::vector<Eigen::Vector3d>& all, con
     return out;
 }
 
+// The points of `which`, in canonical order (by rank), for sums whose rounding must not depend on
+// the order the caller gave the probes in.
+std::vector<Eigen::Vector3d> gather_canonical(const std::vector<Eigen::Vector3d>& all, std::vector<uint32_t> which,
+                                              const std::vector<uint32_t>& rank) {
+    std::sort(which.begin(), which.end(), [&](uint32_t a, uint32_t b) { return rank[a] < rank[b]; });
+    return gather(all, which);
+}
+
 // Merges in the set's own reduced coordinates (a flat set merges probes that differ only across its
 // plane, since the triangulation cannot tell them apart) until merging no longer lowers the dimension.
-SetShape merge_and_detect(const std::vector<Eigen::Vector3d>& local, double diagonal, const BuildSettings& settings,
-                          ProbeGroups& groups) {
+// Merging runs in the caller's order (the first given of a group survives); the shape is fitted to
+// the survivors in canonical order.
+SetShape merge_and_detect(const std::vector<Eigen::Vector3d>& local, const std::vector<uint32_t>& rank,
+                          double diagonal, const BuildSettings& settings, ProbeGroups& groups) {
     SetShape shape;
     for (int round = 0; round < 8; ++round) {
-        const std::vector<Eigen::Vector3d> points = gather(local, groups.kept);
-        shape = detect_set_dimension(points, diagonal, settings.flat_tolerance);
-        std::vector<Eigen::Vector3d> reduced(points.size());
-        for (size_t j = 0; j < points.size(); ++j) reduced[j] = shape.reduce(points[j]);
+        shape = detect_set_dimension(gather_canonical(local, groups.kept, rank), diagonal, settings.flat_tolerance);
+        std::vector<Eigen::Vector3d> reduced(groups.kept.size());
+        for (size_t j = 0; j < groups.kept.size(); ++j) {
+            const Eigen::Vector3d& p = local[groups.kept[j]];
+            reduced[j] = shape.dimension == 3 ? p : shape.reduce(p);
+        }
         const ProbeMerge merge = merge_close_points(reduced, settings.merge_tolerance * diagonal);
         if (merge.merged_count() == 0) return shape;
         groups.apply(merge);
     }
-    return detect_set_dimension(gather(local, groups.kept), diagonal, settings.flat_tolerance);
+    return detect_set_dimension(gather_canonical(local, groups.kept, rank), diagonal, settings.flat_tolerance);
 }
 
 // Triangulation of the stored probes in their own dimension.
@@ -92,8 +103,9 @@ SimplexMesh triangulate(const std::vector<Eigen::Vector3d>& points, const SetSha
             return mesh;
         }
         case 1: {
+            // Ordered by the stored coordinate along the line's main axis (what the run time compares).
             std::vector<double> along(points.size());
-            for (size_t j = 0; j < points.size(); ++j) along[j] = shape.reduce(points[j]).x();
+            for (size_t j = 0; j < points.size(); ++j) along[j] = points[j][shape.line_axis()];
             return line_segments(along);
         }
         case 2: {
@@ -145,24 +157,52 @@ void merge_unused_probes(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& 
     }
 }
 
-// Gives every inner cell positive orientation (3D volume, 2D area about the plane normal, 1D extent
-// along the line), swapping slots 0 and 1 with their neighbours where needed.
-void orient_cells(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const SetShape& shape) {
-    for (size_t c = 0; c < mesh.cell_count(); ++c) {
-        const CellSlots& v = mesh.vertices[c];
-        double orientation = 1;
-        if (mesh.dimension == 3) {
-            orientation = (p[v[1]] - p[v[0]]).cross(p[v[2]] - p[v[0]]).dot(p[v[3]] - p[v[0]]);
-        } else if (mesh.dimension == 2) {
-            orientation = (p[v[1]] - p[v[0]]).cross(p[v[2]] - p[v[0]]).dot(shape.axes.col(2));
-        } else if (mesh.dimension == 1) {
-            orientation = (p[v[1]] - p[v[0]]).dot(shape.axes.col(0));
+// Gives every inner cell positive orientation, decided exactly on the stored coordinates
+// (store_format.h): 3D orient3d(v0, v1, v2, v3) > 0, 2D orient2d(v0, v1, v2) > 0 in the plane
+// coordinates, 1D v0 < v1 along the line's axis. TetGen winds all its cells alike, so its convention
+// is read from the signs and turned into ours for every cell by one swap of slots 0 and 1 (with their
+// neighbours); a cell of zero orientation (exactly flat on the stored floats) keeps that consistent
+// winding. Returns the number of flat cells.
+size_t orient_cells(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const SetShape& shape) {
+    const size_t cells = mesh.cell_count();
+    if (mesh.dimension == 0) return 0;
+    std::vector<int8_t> sign(cells);
+    if (mesh.dimension == 3) {
+        for (size_t c = 0; c < cells; ++c) {
+            const CellSlots& v = mesh.vertices[c];
+            sign[c] = int8_t(orient3d_sign(p[v[0]].data(), p[v[1]].data(), p[v[2]].data(), p[v[3]].data()));
         }
-        if (orientation < 0) {
+    } else if (mesh.dimension == 2) {
+        std::vector<Eigen::Vector2d> uv(p.size());
+        for (size_t j = 0; j < p.size(); ++j) uv[j] = shape.plane_coordinates(p[j]);
+        for (size_t c = 0; c < cells; ++c) {
+            const CellSlots& v = mesh.vertices[c];
+            sign[c] = int8_t(orient2d_sign(uv[v[0]].data(), uv[v[1]].data(), uv[v[2]].data()));
+        }
+    } else {
+        const uint32_t axis = shape.line_axis();
+        for (size_t c = 0; c < cells; ++c) {
+            const CellSlots& v = mesh.vertices[c];
+            sign[c] = int8_t((p[v[1]][axis] > p[v[0]][axis]) - (p[v[1]][axis] < p[v[0]][axis]));
+        }
+    }
+    size_t positive = 0, negative = 0;
+    for (int8_t s : sign) {
+        positive += s > 0;
+        negative += s < 0;
+    }
+    // A flat cell follows the majority; any other cell is swapped exactly when it is negative (a
+    // cell against the majority would mean TetGen wound cells differently: it is righted alone).
+    const bool flip_flat = negative > positive;
+    size_t flat = 0;
+    for (size_t c = 0; c < cells; ++c) {
+        flat += sign[c] == 0;
+        if (sign[c] < 0 || (sign[c] == 0 && flip_flat)) {
             std::swap(mesh.vertices[c][0], mesh.vertices[c][1]);
             std::swap(mesh.neighbours[c][0], mesh.neighbours[c][1]);
         }
     }
+    return flat;
 }
 
 }  // namespace
@@ -173,11 +213,15 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     report_progress(settings, 0.0f, "screening");
     const ScreenedProbes input = screen_probe_input(positions, position_stride, sh, sh_stride, count);
 
-    // Local frame: centred on the probes' centroid, rounded to float exactly as stored, so that every
-    // later stage computes (in double) with the coordinates a query will see.
-    Eigen::Vector3d origin = Eigen::Vector3d::Zero();
-    for (const auto& p : input.positions) origin += p;
-    origin /= double(count);
+    // Local frame: centred on the centre of the probes' bounding box (which, unlike a centroid sum,
+    // does not depend on their order), rounded to float exactly as stored, so that every later stage
+    // computes with the coordinates a query will see.
+    Eigen::Vector3d world_lo = input.positions[0], world_hi = input.positions[0];
+    for (const auto& p : input.positions) {
+        world_lo = world_lo.cwiseMin(p);
+        world_hi = world_hi.cwiseMax(p);
+    }
+    const Eigen::Vector3d origin = 0.5 * (world_lo + world_hi);
     std::vector<Eigen::Vector3d> local(count);  // float-exact; flat and line sets later projected
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
     for (size_t i = 0; i < count; ++i) {
@@ -186,13 +230,17 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         hi = hi.cwiseMax(local[i]);
     }
     const double diagonal = (hi - lo).norm();
+    // The canonical order: along a space-filling curve over the bounds, ties by coordinates.
+    const std::vector<uint32_t> canonical = curve_order(local, lo, hi);
+    std::vector<uint32_t> rank(count);
+    for (uint32_t r = 0; r < count; ++r) rank[canonical[r]] = r;
 
     report_progress(settings, 0.1f, "merging");
     ProbeGroups groups;
     groups.kept.resize(count);
     std::iota(groups.kept.begin(), groups.kept.end(), 0u);
     groups.group = groups.kept;
-    SetShape shape = merge_and_detect(local, diagonal, settings, groups);
+    SetShape shape = merge_and_detect(local, rank, diagonal, settings, groups);
 
     // A flat (line) set is stored on its fitted plane (line): the queries' extrusion across the plane
     // is then the orthogonal projection every later stage and the run time assume. A set already on
@@ -205,6 +253,19 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         }
     }
 
+    // Stored probes (and TetGen's input) in canonical order, whatever order the caller gave.
+    {
+        std::vector<uint32_t> by_rank(groups.kept.size());
+        std::iota(by_rank.begin(), by_rank.end(), 0u);
+        std::sort(by_rank.begin(), by_rank.end(),
+                  [&](uint32_t a, uint32_t b) { return rank[groups.kept[a]] < rank[groups.kept[b]]; });
+        ProbeMerge reorder;
+        reorder.survivors = by_rank;
+        reorder.group_of.resize(by_rank.size());
+        for (uint32_t j = 0; j < by_rank.size(); ++j) reorder.group_of[by_rank[j]] = j;
+        groups.apply(reorder);
+    }
+
     report_progress(settings, 0.2f, "triangulating");
     std::vector<Eigen::Vector3d> points = gather(local, groups.kept);
     SimplexMesh mesh = triangulate(points, shape);
@@ -212,7 +273,6 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     merge_unused_probes(mesh, points, groups);
     if (groups.kept.size() != before) points = gather(local, groups.kept);
     orient_cells(mesh, points, shape);
-    peel_hull_slivers(mesh, points, shape);
 
     report_progress(settings, 0.6f, "hull");
     Hull hull;
@@ -221,21 +281,17 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     } else {
         hull.vertex_normals.assign(points.size(), Eigen::Vector3d::Zero());
     }
-    // Rays leave along the normals exactly as stored (float), so a query's roots match the rows.
-    std::vector<Eigen::Vector3d> normals(points.size());
-    for (size_t j = 0; j < points.size(); ++j) normals[j] = hull.vertex_normals[j].cast<float>().cast<double>();
     const bool extrapolate = !(settings.flags & TP_BUILD_NO_EXTRAPOLATION) && shape.dimension >= 1;
     OuterCells outer;
-    if (extrapolate) outer = build_outer_cells(mesh, hull, points, normals, shape.axes.col(2));
+    if (extrapolate) outer = build_outer_cells(mesh, hull);
 
-    report_progress(settings, 0.7f, "matrices");
-    anchor_cells_at_central_probe(mesh, points);  // the outer cells link to cells, not slots: safe here
-    const std::vector<std::array<double, 12>> inner_matrices = inner_cell_matrices(mesh, points, shape);
-
+    report_progress(settings, 0.7f, "storing");
     StoreData data;
     data.flags = ((settings.flags & TP_BUILD_NO_EXTRAPOLATION) ? kFlagNoExtrapolation : 0u) |
-                 ((settings.flags & TP_BUILD_INDEX32) ? kFlagIndex32 : 0u);
+                 ((settings.flags & TP_BUILD_INDEX32) ? kFlagIndex32 : 0u) |
+                 ((settings.flags & TP_BUILD_COMPACT) ? kFlagCompact : 0u);
     data.dimension = shape.dimension;
+    data.axis = shape.dimension == 2 ? shape.dropped_axis() : shape.dimension == 1 ? shape.line_axis() : 0u;
     for (int a = 0; a < 3; ++a) data.origin[a] = origin[a];
     data.input_probe_count = uint32_t(count);
     const size_t probes = points.size();
@@ -244,7 +300,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     for (size_t j = 0; j < probes; ++j) {
         for (int a = 0; a < 3; ++a) {
             data.positions[j * 3 + size_t(a)] = float(points[j][a]);
-            data.normals[j * 3 + size_t(a)] = float(normals[j][a]);
+            data.normals[j * 3 + size_t(a)] = float(hull.vertex_normals[j][a]);
         }
     }
     // A stored probe's SH is the mean of every input probe merged into it.
@@ -264,23 +320,15 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
 
     data.inner_cell_count = uint32_t(mesh.cell_count());
     const size_t cells = mesh.cell_count() + outer.vertices.size();
-    data.cell_vertices.reserve(cells * 4);
-    data.cell_neighbours.reserve(cells * 4);
+    data.cell_vertices.resize(cells * 4);
+    data.cell_neighbours.resize(cells * 4);
     for (size_t c = 0; c < mesh.cell_count(); ++c) {
-        data.cell_vertices.insert(data.cell_vertices.end(), mesh.vertices[c].begin(), mesh.vertices[c].end());
-        data.cell_neighbours.insert(data.cell_neighbours.end(), mesh.neighbours[c].begin(), mesh.neighbours[c].end());
+        std::copy_n(mesh.vertices[c].begin(), 4, &data.cell_vertices[c * 4]);
+        std::copy_n(mesh.neighbours[c].begin(), 4, &data.cell_neighbours[c * 4]);
     }
-    for (size_t c = 0; c < outer.vertices.size(); ++c) {
-        data.cell_vertices.insert(data.cell_vertices.end(), outer.vertices[c].begin(), outer.vertices[c].end());
-        data.cell_neighbours.insert(data.cell_neighbours.end(), outer.neighbours[c].begin(), outer.neighbours[c].end());
-    }
-    data.inner_matrices.reserve(inner_matrices.size() * 12);
-    for (const auto& m : inner_matrices) {
-        for (double value : m) data.inner_matrices.push_back(float(value));
-    }
-    data.outer_matrices.reserve(outer.matrices.size() * 16);
-    for (const auto& m : outer.matrices) {
-        for (double value : m) data.outer_matrices.push_back(float(value));
+    for (size_t c = 0, at = mesh.cell_count() * 4; c < outer.vertices.size(); ++c, at += 4) {
+        std::copy_n(outer.vertices[c].begin(), 4, &data.cell_vertices[at]);
+        std::copy_n(outer.neighbours[c].begin(), 4, &data.cell_neighbours[at]);
     }
     for (int a = 0; a < 3; ++a) {
         data.bounds_min[a] = data.positions[size_t(a)];

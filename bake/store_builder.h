@@ -1,6 +1,8 @@
 // Builds a store's arrays from probe positions and SH: input screening, merging of duplicates,
-// dimension detection (point, line, flat, general), Delaunay (TetGen), hull and outer cells,
-// barycentric and outer-cell matrices, cell ordering and the cold-start grid.
+// dimension detection (point, line, flat, general), Delaunay (TetGen) on the probes in a canonical
+// order, exact orientation of the cells, hull and outer cells, cell ordering and the cold-start grid.
+// The result depends on the probe set, not on the order it was given in, except for which probe of
+// a merged group survives (the first given) and, within the merge tolerance, greedy merge chains.
 #pragma once
 
 #include "capi/tetprobe.h"
@@ -12,15 +14,15 @@
 namespace tetprobe {
 
 struct BuildSettings {
-    uint32_t flags = 0;              // TP_BUILD_*
+    uint32_t flags = 0;              // TP_BUILD_* (the same bits as the store's kFlag*)
     double merge_tolerance = kDefaultMergeTolerance;  // fraction of the bounding-box diagonal
     double flat_tolerance = kDefaultFlatTolerance;    // fraction of the bounding-box diagonal
     tp_progress_fn progress = nullptr;
     void* progress_user = nullptr;
 };
 
-// Throws tetprobe::Error (TP_ERROR_INVALID_ARGUMENT, TP_ERROR_DEGENERATE, TP_ERROR_TETGEN,
-// TP_ERROR_CANCELLED) on failure. positions: 3 floats per probe at position_stride bytes;
+// Throws tetprobe::Error (Status::invalid_argument, degenerate, tetgen,
+// cancelled) on failure. positions: 3 floats per probe at position_stride bytes;
 // sh: 27 floats per probe at sh_stride bytes, or nullptr for zeros. Strides are already resolved (> 0).
 StoreData build_store_data(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
                            size_t count, const BuildSettings& settings);

@@ -32,6 +32,11 @@ void on_fatal_signal(int signal) {
 
 }  // namespace
 
+std::mutex& tetgen_mutex() {
+    static std::mutex mutex;
+    return mutex;
+}
+
 bool call_guarded_against_crashes(void (*fn)(void*), void* context) {
     struct sigaction action = {};
     action.sa_handler = &on_fatal_signal;

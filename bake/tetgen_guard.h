@@ -4,7 +4,12 @@
 // signal raised on this thread into a failed attempt.
 #pragma once
 
+#include <mutex>
+
 namespace tetprobe {
+
+// Serialises every use of TetGen's global state (its calls and its predicates' constants).
+std::mutex& tetgen_mutex();
 
 // Runs fn(context); returns false if it raised SIGABRT, SIGSEGV, SIGBUS or SIGFPE on the calling
 // thread. What fn allocated before failing is leaked (its state cannot be trusted). The handlers are

@@ -28,7 +28,7 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
     tetprobe::BuildSettings settings;
     if (!options) return settings;
     if (!TP_OPTION_FIELD(options, flags)) {
-        throw tetprobe::Error(Status::invalid_argument,
+        throw tetprobe::Error(tetprobe::Status::invalid_argument,
                               "options->struct_size " + std::to_string(options->struct_size) +
                                   " is too small (call tp_build_options_init)");
     }

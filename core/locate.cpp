@@ -27,6 +27,9 @@ constexpr uint32_t kRecentOuterCells = 8;
 constexpr double kOrient3dBoundScale = 6.000001 * kOrient3dErrorFactor;
 constexpr double kOrient2dBoundScale = 2.000001 * kOrient2dErrorFactor;
 
+// max without std::fmax's NaN rules (a libm call); the inputs here are never NaN.
+inline double larger(double a, double b) { return a > b ? a : b; }
+
 template <class Index>
 constexpr uint32_t none_index() {
     return sizeof(Index) == 2 ? kNone16 : kNone32;
@@ -76,22 +79,24 @@ struct InnerView {
 };
 
 template <class Index>
-InnerView view_inner_cell(const Cells<Index>& cells, uint32_t cell, const float q[3]) {
+inline __attribute__((always_inline)) InnerView view_inner_cell(const Cells<Index>& cells, uint32_t cell, const float q[3]) {
     const Store::Impl& s = cells.s;
     const uint32_t d = s.dimension;
     InnerView v;
     const float* P[4];
     for (uint32_t k = 0; k <= d; ++k) P[k] = cells.position(cells.vertex(cell, k));
     if (d == 3) {
+        // D[k] = +-det of the differences a_i = P_i - q of the three vertices other than k, from the
+        // six 2x2 minors of their x and y.
         double a[4][3];
         double mx = 0, my = 0, mz = 0;
         for (int i = 0; i < 4; ++i) {
             a[i][0] = double(P[i][0]) - double(q[0]);
             a[i][1] = double(P[i][1]) - double(q[1]);
             a[i][2] = double(P[i][2]) - double(q[2]);
-            mx = std::fmax(mx, std::fabs(a[i][0]));
-            my = std::fmax(my, std::fabs(a[i][1]));
-            mz = std::fmax(mz, std::fabs(a[i][2]));
+            mx = larger(mx, std::fabs(a[i][0]));
+            my = larger(my, std::fabs(a[i][1]));
+            mz = larger(mz, std::fabs(a[i][2]));
         }
         auto minor = [&](int i, int j) { return a[i][0] * a[j][1] - a[j][0] * a[i][1]; };
         const double m01 = minor(0, 1), m02 = minor(0, 2), m03 = minor(0, 3);
@@ -101,6 +106,11 @@ InnerView view_inner_cell(const Cells<Index>& cells, uint32_t cell, const float 
         v.D[2] = a[0][2] * m13 - a[1][2] * m03 + a[3][2] * m01;
         v.D[3] = -(a[0][2] * m12 - a[1][2] * m02 + a[2][2] * m01);
         const double bound = kOrient3dBoundScale * (mx * my * mz);
+        if ((v.D[0] > bound) & (v.D[1] > bound) & (v.D[2] > bound) & (v.D[3] > bound)) {  // the common case
+            v.sign[0] = v.sign[1] = v.sign[2] = v.sign[3] = 1;
+            v.verdict = InnerView::holds;
+            return v;
+        }
         for (int k = 0; k < 4; ++k) {
             if (v.D[k] > bound) {
                 v.sign[k] = 1;
@@ -121,8 +131,8 @@ InnerView view_inner_cell(const Cells<Index>& cells, uint32_t cell, const float 
             project_to_plane(P[i], s.axis, uv[i]);
             a[i][0] = double(uv[i][0]) - double(quv[0]);
             a[i][1] = double(uv[i][1]) - double(quv[1]);
-            mu = std::fmax(mu, std::fabs(a[i][0]));
-            mv = std::fmax(mv, std::fabs(a[i][1]));
+            mu = larger(mu, std::fabs(a[i][0]));
+            mv = larger(mv, std::fabs(a[i][1]));
         }
         auto cross = [&](int i, int j) { return a[i][0] * a[j][1] - a[j][0] * a[i][1]; };
         v.D[0] = cross(1, 2);
@@ -165,11 +175,11 @@ InnerView view_inner_cell(const Cells<Index>& cells, uint32_t cell, const float 
 
 // Weights of a held point: the orientations over their sum, those of exact sign 0 exactly 0.
 template <class Index>
-void set_inner_weights(const Cells<Index>& cells, uint32_t cell, const InnerView& v, Location& loc) {
+inline __attribute__((always_inline)) void set_inner_weights(const Cells<Index>& cells, uint32_t cell, const InnerView& v, Location& loc) {
     const uint32_t used = cells.s.dimension + 1;
     double w[4] = {0, 0, 0, 0}, sum = 0;
     for (uint32_t k = 0; k < used; ++k) {
-        w[k] = v.sign[k] > 0 ? std::fmax(v.D[k], 0.0) : 0.0;
+        w[k] = v.sign[k] > 0 ? larger(v.D[k], 0.0) : 0.0;
         sum += w[k];
     }
     if (!(sum > 0)) {  // every positive orientation rounded to zero: share equally among them
@@ -421,10 +431,53 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
     return loc;
 }
 
+// The common case of a coherent query, kept lean: a tetrahedron that holds the query clearly (every
+// orientation beyond the filter's bound, so its sign is certain) answers with weights D / sum(D).
+template <class Index>
+inline __attribute__((always_inline)) bool holds_clearly(const Cells<Index>& cells, uint32_t cell, const float q[3],
+                                                         Location& loc) {
+    const CellRecord<Index>& r = cells.records[cell];
+    const float* P0 = cells.position(r.vertices[0]);
+    const float* P1 = cells.position(r.vertices[1]);
+    const float* P2 = cells.position(r.vertices[2]);
+    const float* P3 = cells.position(r.vertices[3]);
+    const double qx = q[0], qy = q[1], qz = q[2];
+    const double x0 = P0[0] - qx, y0 = P0[1] - qy, z0 = P0[2] - qz;
+    const double x1 = P1[0] - qx, y1 = P1[1] - qy, z1 = P1[2] - qz;
+    const double x2 = P2[0] - qx, y2 = P2[1] - qy, z2 = P2[2] - qz;
+    const double x3 = P3[0] - qx, y3 = P3[1] - qy, z3 = P3[2] - qz;
+    const double m01 = x0 * y1 - x1 * y0, m02 = x0 * y2 - x2 * y0, m03 = x0 * y3 - x3 * y0;
+    const double m12 = x1 * y2 - x2 * y1, m13 = x1 * y3 - x3 * y1, m23 = x2 * y3 - x3 * y2;
+    const double D0 = z1 * m23 - z2 * m13 + z3 * m12;
+    const double D1 = z2 * m03 - z0 * m23 - z3 * m02;
+    const double D2 = z0 * m13 - z1 * m03 + z3 * m01;
+    const double D3 = z1 * m02 - z0 * m12 - z2 * m01;
+    const double mx = larger(larger(std::fabs(x0), std::fabs(x1)), larger(std::fabs(x2), std::fabs(x3)));
+    const double my = larger(larger(std::fabs(y0), std::fabs(y1)), larger(std::fabs(y2), std::fabs(y3)));
+    const double mz = larger(larger(std::fabs(z0), std::fabs(z1)), larger(std::fabs(z2), std::fabs(z3)));
+    const double bound = kOrient3dBoundScale * (mx * my * mz);
+    if (!((D0 > bound) & (D1 > bound) & (D2 > bound) & (D3 > bound))) return false;
+    const double scale = 1.0 / (D0 + D1 + D2 + D3);
+    loc.cell = int32_t(cell);
+    loc.probes[0] = r.vertices[0];
+    loc.probes[1] = r.vertices[1];
+    loc.probes[2] = r.vertices[2];
+    loc.probes[3] = r.vertices[3];
+    loc.weights[0] = float(D0 * scale);
+    loc.weights[1] = float(D1 * scale);
+    loc.weights[2] = float(D2 * scale);
+    loc.weights[3] = float(D3 * scale);
+    return true;
+}
+
 template <class Index>
 Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
     const Cells<Index> cells(s);
     uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(q);
+    if (s.dimension == 3 && cell < s.inner_cell_count) {
+        Location loc;
+        if (holds_clearly(cells, cell, q, loc)) return loc;
+    }
     uint32_t previous = kNoCell;
     double last_t = -1.0;       // t of the last outer cell that held the query's moved facet
     bool beyond_hull = false;   // an outer cell found the query strictly beyond its hull facet

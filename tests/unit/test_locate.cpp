@@ -271,7 +271,7 @@ TEST_CASE("hints never change the answer", "[locate]") {
     }
 }
 
-TEST_CASE("many threads querying one store get the serial results", "[locate]") {
+TEST_CASE("many threads querying one store get the serial results", "[locate][threads]") {
     const Built b = build(families::random_cloud(300, 51).positions);
     const std::vector<reference::Vec> targets = query_points(b.data, 2000, 52);
     std::vector<Query> queries;
