@@ -8,6 +8,7 @@ PACKAGES=(
   python3 python3-numpy python3-scipy python3-matplotlib python3-pytest
   mono-mcs mono-runtime
   clang-14 libclang-rt-14-dev
+  libcgal-dev
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

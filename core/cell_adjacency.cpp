@@ -25,8 +25,13 @@ struct FacetEntry {
     std::array<uint32_t, 3> key;  // the facet's vertex slots' values, sorted, padded with kNone32
     uint32_t cell;
     uint32_t slot;  // the slot opposite the facet
-    bool operator<(const FacetEntry& o) const { return key < o.key; }
 };
+
+void sort3(std::array<uint32_t, 3>& k) {
+    if (k[1] < k[0]) std::swap(k[0], k[1]);
+    if (k[2] < k[1]) std::swap(k[1], k[2]);
+    if (k[1] < k[0]) std::swap(k[0], k[1]);
+}
 
 }  // namespace
 
@@ -48,11 +53,11 @@ void rebuild_neighbours(CellRecord<Index>* records, uint32_t count, uint32_t dim
                 only_outer &= r.vertices[j] == outer_index<Index>();
             }
             if (only_outer) continue;  // a line's outer cell: the far side has no neighbour
-            std::sort(e.key.begin(), e.key.begin() + n);
+            sort3(e.key);  // unused places hold kNone32, the largest value
             facets.push_back(e);
         }
     }
-    std::sort(facets.begin(), facets.end());
+    std::sort(facets.begin(), facets.end(), [](const FacetEntry& a, const FacetEntry& b) { return a.key < b.key; });
     for (size_t i = 0; i < facets.size();) {
         size_t j = i + 1;
         while (j < facets.size() && facets[j].key == facets[i].key) ++j;

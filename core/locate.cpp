@@ -431,16 +431,18 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
     return loc;
 }
 
-// The common case of a coherent query, kept lean: a tetrahedron that holds the query clearly (every
-// orientation beyond the filter's bound, so its sign is certain) answers with weights D / sum(D).
-template <class Index>
-inline __attribute__((always_inline)) bool holds_clearly(const Cells<Index>& cells, uint32_t cell, const float q[3],
-                                                         Location& loc) {
-    const CellRecord<Index>& r = cells.records[cell];
-    const float* P0 = cells.position(r.vertices[0]);
-    const float* P1 = cells.position(r.vertices[1]);
-    const float* P2 = cells.position(r.vertices[2]);
-    const float* P3 = cells.position(r.vertices[3]);
+// The four orientations of a tetrahedron with the query, D[k] = the cell with vertex k replaced by
+// the query, in double from the differences a_i = P_i - q via the six 2x2 minors of their x and y,
+// and the filter's bound: a D beyond +-bound has the sign of its exact value (Shewchuk's bound on a
+// permanent no larger than 6 * max|x| * max|y| * max|z|).
+struct Orientations {
+    double D[4];
+    double bound;
+};
+
+inline __attribute__((always_inline)) Orientations tetrahedron_orientations(const float* P0, const float* P1,
+                                                                             const float* P2, const float* P3,
+                                                                             const float q[3]) {
     const double qx = q[0], qy = q[1], qz = q[2];
     const double x0 = P0[0] - qx, y0 = P0[1] - qy, z0 = P0[2] - qz;
     const double x1 = P1[0] - qx, y1 = P1[1] - qy, z1 = P1[2] - qz;
@@ -448,45 +450,69 @@ inline __attribute__((always_inline)) bool holds_clearly(const Cells<Index>& cel
     const double x3 = P3[0] - qx, y3 = P3[1] - qy, z3 = P3[2] - qz;
     const double m01 = x0 * y1 - x1 * y0, m02 = x0 * y2 - x2 * y0, m03 = x0 * y3 - x3 * y0;
     const double m12 = x1 * y2 - x2 * y1, m13 = x1 * y3 - x3 * y1, m23 = x2 * y3 - x3 * y2;
-    const double D0 = z1 * m23 - z2 * m13 + z3 * m12;
-    const double D1 = z2 * m03 - z0 * m23 - z3 * m02;
-    const double D2 = z0 * m13 - z1 * m03 + z3 * m01;
-    const double D3 = z1 * m02 - z0 * m12 - z2 * m01;
+    Orientations o;
+    o.D[0] = z1 * m23 - z2 * m13 + z3 * m12;
+    o.D[1] = z2 * m03 - z0 * m23 - z3 * m02;
+    o.D[2] = z0 * m13 - z1 * m03 + z3 * m01;
+    o.D[3] = z1 * m02 - z0 * m12 - z2 * m01;
     const double mx = larger(larger(std::fabs(x0), std::fabs(x1)), larger(std::fabs(x2), std::fabs(x3)));
     const double my = larger(larger(std::fabs(y0), std::fabs(y1)), larger(std::fabs(y2), std::fabs(y3)));
     const double mz = larger(larger(std::fabs(z0), std::fabs(z1)), larger(std::fabs(z2), std::fabs(z3)));
-    const double bound = kOrient3dBoundScale * (mx * my * mz);
-    if (!((D0 > bound) & (D1 > bound) & (D2 > bound) & (D3 > bound))) return false;
-    const double scale = 1.0 / (D0 + D1 + D2 + D3);
-    loc.cell = int32_t(cell);
-    loc.probes[0] = r.vertices[0];
-    loc.probes[1] = r.vertices[1];
-    loc.probes[2] = r.vertices[2];
-    loc.probes[3] = r.vertices[3];
-    loc.weights[0] = float(D0 * scale);
-    loc.weights[1] = float(D1 * scale);
-    loc.weights[2] = float(D2 * scale);
-    loc.weights[3] = float(D3 * scale);
-    return true;
+    o.bound = kOrient3dBoundScale * (mx * my * mz);
+    return o;
+}
+
+// The common case, kept lean: the walk over tetrahedra while the filter decides. A cell whose four
+// orientations are all certainly positive holds the query (weights D / sum D); a cell with a
+// certainly negative one is left across the most negative (any facet the query is strictly beyond
+// is a valid visibility step). Returns true with loc filled when answered; false with *cell where
+// the general walk must take over (an uncertain sign, the hull, an outer cell, or the step cap).
+template <class Index>
+inline __attribute__((always_inline)) bool walk_clear_tetrahedra(const Cells<Index>& cells, uint32_t* cell,
+                                                                 const float q[3], uint32_t* steps, uint32_t step_cap,
+                                                                 Location& loc) {
+    const uint32_t inner = cells.s.inner_cell_count;
+    uint32_t c = *cell;
+    while (c < inner && *steps <= step_cap) {
+        const CellRecord<Index>& r = cells.records[c];
+        const Orientations o = tetrahedron_orientations(cells.position(r.vertices[0]), cells.position(r.vertices[1]),
+                                                        cells.position(r.vertices[2]), cells.position(r.vertices[3]), q);
+        const double* D = o.D;
+        if ((D[0] > o.bound) & (D[1] > o.bound) & (D[2] > o.bound) & (D[3] > o.bound)) {
+            const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
+            loc.cell = int32_t(c);
+            loc.steps = *steps;
+            for (int k = 0; k < 4; ++k) {
+                loc.probes[k] = r.vertices[k];
+                loc.weights[k] = float(D[k] * scale);
+            }
+            return true;
+        }
+        int exit = 0;
+        for (int k = 1; k < 4; ++k) exit = D[k] < D[exit] ? k : exit;
+        const uint32_t next = r.neighbours[exit];
+        if (!(D[exit] < -o.bound) || next == none_index<Index>()) break;
+        c = next;
+        ++*steps;
+    }
+    *cell = c;
+    return false;
 }
 
 template <class Index>
 Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
     const Cells<Index> cells(s);
     uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(q);
-    if (s.dimension == 3 && cell < s.inner_cell_count) {
-        Location loc;
-        if (holds_clearly(cells, cell, q, loc)) return loc;
-    }
+    // A walk on a valid tessellation never visits a cell twice; only a corrupt blob reaches the cap.
+    const uint32_t step_cap = s.cell_count + 64;
+    uint32_t steps = 0;
+    Location loc;
+    if (s.dimension == 3 && walk_clear_tetrahedra(cells, &cell, q, &steps, step_cap, loc)) return loc;
     uint32_t previous = kNoCell;
     double last_t = -1.0;       // t of the last outer cell that held the query's moved facet
     bool beyond_hull = false;   // an outer cell found the query strictly beyond its hull facet
     uint32_t recent[kRecentOuterCells];
     uint32_t outer_visits = 0;
-    // A walk on a valid tessellation never visits a cell twice; only a corrupt blob reaches the cap.
-    const uint32_t step_cap = s.cell_count + 64;
-    Location loc;
-    uint32_t steps = 0;
     for (; steps <= step_cap; ++steps) {
         uint32_t next;
         if (cell < s.inner_cell_count) {

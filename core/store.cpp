@@ -15,10 +15,10 @@
 namespace tetprobe {
 
 AlignedBytes aligned_bytes(size_t size) {
-    // At least one line, so an empty blob still gets a valid pointer; zero past size.
+    // At least one line, so an empty blob still gets a valid pointer; zero past size (the caller fills the rest).
     const size_t capacity = (std::max(size, size_t(64)) + 63) & ~size_t(63);
     AlignedBytes bytes(static_cast<uint8_t*>(::operator new(capacity, std::align_val_t(64))));
-    std::memset(bytes.get(), 0, capacity);
+    std::memset(bytes.get() + size, 0, capacity - size);
     return bytes;
 }
 

@@ -4,8 +4,9 @@
 //   [header: 120 bytes][section table: kSectionCount x {uint64 offset, uint64 size}][sections...]
 //
 // Sections appear in table order, each at a 16-byte-aligned offset, with zero padding between
-// them and nothing after the last. The checksum is FNV-1a 64 of the whole blob with the checksum
-// field read as zero, so any changed byte (header included) is caught.
+// them and nothing after the last. The checksum is FNV-1a 64 over the blob's little-endian 64-bit
+// words (seeded with the size, the last word zero-padded) with the checksum field read as zero, so
+// any changed byte (header included) is caught.
 //
 // Geometry (all positions are local: world minus header.origin, float32). Every decision of which
 // cell holds a point is an orientation predicate on these float32 positions, evaluated exactly
@@ -102,7 +103,7 @@ constexpr size_t kChecksumOffset = offsetof(StoreHeader, checksum);
 // Where the format version sits in every format (so an older blob is told apart from a corrupt one).
 constexpr size_t kFormatVersionOffset = offsetof(StoreHeader, format_version);
 
-// FNV-1a 64 over bytes, with the 8 bytes at kChecksumOffset read as zero.
+// The checksum above, with the 8 bytes at kChecksumOffset read as zero.
 uint64_t store_checksum(const uint8_t* data, size_t size);
 
 }  // namespace tetprobe

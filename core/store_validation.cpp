@@ -153,30 +153,31 @@ void check_records(const Store::Impl& s) {
         const bool is_inner = c < inner;
         for (uint32_t k = 0; k < 4; ++k) {
             const uint32_t n = widen_index(r.neighbours[k]);
-            const std::string where = "cell " + std::to_string(c) + " neighbour " + std::to_string(k);
+            // Built only when a check fails (loading a large store must not build a string per slot).
+            auto where = [&] { return "cell " + std::to_string(c) + " neighbour " + std::to_string(k); };
             if (k > d) {
-                if (n != kNone32) reject(where + " is above the dimension and must be none");
+                if (n != kNone32) reject(where() + " is above the dimension and must be none");
                 continue;
             }
             if (n == kNone32) {
                 // Without extrapolation the hull has no neighbours; a line's outer cell has no outer neighbour.
                 const bool allowed = is_inner ? may_lack_neighbours : (d == 1 && k < d);
-                if (!allowed) reject(where + " is missing");
+                if (!allowed) reject(where() + " is missing");
                 continue;
             }
-            if (n >= s.cell_count) reject(where + " is not a cell");
-            if (!is_inner && k == d && n >= inner) reject(where + " of an outer cell must be the inner cell it rests on");
-            if (!is_inner && k < d && n < inner) reject(where + " of an outer cell must be an outer cell");
+            if (n >= s.cell_count) reject(where() + " is not a cell");
+            if (!is_inner && k == d && n >= inner) reject(where() + " of an outer cell must be the inner cell it rests on");
+            if (!is_inner && k < d && n < inner) reject(where() + " of an outer cell must be an outer cell");
             // The neighbour lists c back and holds every vertex of the facet opposite slot k.
             const CellRecord<Index>& m = records[n];
             bool listed = false;
             for (uint32_t j = 0; j < 4; ++j) listed |= widen_index(m.neighbours[j]) == c;
-            if (!listed) reject(where + " = " + std::to_string(n) + " does not list cell " + std::to_string(c) + " back");
+            if (!listed) reject(where() + " = " + std::to_string(n) + " does not list cell " + std::to_string(c) + " back");
             for (uint32_t j = 0; j <= d; ++j) {
                 if (j == k) continue;
                 bool shared = false;
                 for (uint32_t i = 0; i <= d; ++i) shared |= m.vertices[i] == r.vertices[j];
-                if (!shared) reject(where + " = " + std::to_string(n) + " does not share the facet opposite slot " +
+                if (!shared) reject(where() + " = " + std::to_string(n) + " does not share the facet opposite slot " +
                                     std::to_string(k));
             }
         }

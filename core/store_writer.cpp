@@ -60,7 +60,7 @@ void write_sh(uint8_t* out, const std::vector<float>& sh, uint32_t halves) {
     for (size_t i = 0; i < sh.size(); ++i) {
         float value = sh[i];
         require(std::isfinite(value), "sh[" + std::to_string(i) + "] is not finite");
-        value = std::fmax(-kHalfMax, std::fmin(kHalfMax, value));
+        value = value < -kHalfMax ? -kHalfMax : (value > kHalfMax ? kHalfMax : value);
         const uint16_t half = float_to_half(value);
         std::memcpy(out + ((i / 27) * halves + i % 27) * sizeof half, &half, sizeof half);
     }
