@@ -685,14 +685,20 @@ static void test_store_info_and_struct_size(void) {
     tp_store_release(store);
 }
 
-/* FNV-1a 64 with the checksum field read as zero (store_format.h), to forge a consistent blob. */
+/* The blob checksum of store_format.h, to forge a consistent blob: FNV-1a 64 over little-endian 64-bit
+   words (seeded with the size, the last word zero-padded), the checksum field read as zero. */
 #define CHECKSUM_OFFSET 104 /* format 3: after magic, 9 uint32 (axis included), grid, origin, bounds */
 static void repair_checksum(unsigned char* data, size_t size) {
-    unsigned long long hash = 14695981039346656037ull;
-    size_t i;
-    for (i = 0; i < size; ++i) {
-        unsigned char byte = (i >= CHECKSUM_OFFSET && i < CHECKSUM_OFFSET + 8) ? 0 : data[i];
-        hash ^= byte;
+    uint64_t hash = 14695981039346656037ull ^ (uint64_t)size;
+    size_t i, k;
+    for (i = 0; i < size; i += 8) {
+        uint64_t word = 0;
+        for (k = 0; k < 8 && i + k < size; ++k) {
+            const size_t at = i + k;
+            const unsigned char byte = (at >= CHECKSUM_OFFSET && at < CHECKSUM_OFFSET + 8) ? 0 : data[at];
+            word |= (uint64_t)byte << (8 * k);
+        }
+        hash ^= word;
         hash *= 1099511628211ull;
     }
     for (i = 0; i < 8; ++i) data[CHECKSUM_OFFSET + i] = (unsigned char)(hash >> (8 * i));
