@@ -40,6 +40,15 @@ namespace TetProbe
         public Vector3 bounds_max;
     }
 
+    /// <summary>tp_batch_options: flags (TP_BATCH_*) and the threads a batch query may use (0 or 1 = the caller's).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpBatchOptions
+    {
+        public uint struct_size;
+        public uint flags;
+        public uint threads;
+    }
+
     [StructLayout(LayoutKind.Sequential)]
     internal struct NativeLocation
     {
@@ -59,6 +68,8 @@ namespace TetProbe
 
         public const uint BuildNoExtrapolation = 1;
         public const uint BuildIndex32 = 2;
+        public const uint BuildCompact = 4;
+        public const uint BatchChainHints = 1;
         public const uint CellOuter = 1;
         public const uint LightDirectional = 0;
         public const uint LightPoint = 1;
@@ -107,9 +118,18 @@ namespace TetProbe
             out SphericalHarmonicsL2 sh);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_batch_options_init(ref TpBatchOptions options);
+
+        // Two declarations of each batch call: options by reference, or IntPtr.Zero for the defaults.
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_interpolate_batch(StoreHandle store, UIntPtr count, [In] Vector3[] positions,
             UIntPtr position_stride, [In, Out] int[] hints, UIntPtr hint_stride, [Out] SphericalHarmonicsL2[] sh,
-            UIntPtr sh_stride);
+            UIntPtr sh_stride, ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_batch(StoreHandle store, UIntPtr count, [In] Vector3[] positions,
+            UIntPtr position_stride, [In, Out] int[] hints, UIntPtr hint_stride, [Out] SphericalHarmonicsL2[] sh,
+            UIntPtr sh_stride, IntPtr options);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_weights(StoreHandle store, ref Vector3 position, ref int cell_hint,
@@ -118,7 +138,12 @@ namespace TetProbe
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_weights_batch(StoreHandle store, UIntPtr count, [In] Vector3[] positions,
             UIntPtr position_stride, [In, Out] int[] hints, UIntPtr hint_stride, [Out] uint[] probes,
-            UIntPtr probes_stride, [Out] float[] weights, UIntPtr weights_stride);
+            UIntPtr probes_stride, [Out] float[] weights, UIntPtr weights_stride, ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_weights_batch(StoreHandle store, UIntPtr count, [In] Vector3[] positions,
+            UIntPtr position_stride, [In, Out] int[] hints, UIntPtr hint_stride, [Out] uint[] probes,
+            UIntPtr probes_stride, [Out] float[] weights, UIntPtr weights_stride, IntPtr options);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_locate(StoreHandle store, ref Vector3 position, ref int cell_hint,

@@ -9,7 +9,7 @@ namespace TetProbe
     internal static class NativeProxy
     {
         /// <summary>The version this binding was written for; the library's major.minor must match.</summary>
-        public const uint BindingVersionMajor = 0, BindingVersionMinor = 4;
+        public const uint BindingVersionMajor = 0, BindingVersionMinor = 5;
 
         static bool versionChecked;
 
@@ -106,10 +106,29 @@ namespace TetProbe
             Check(NativeMethods.tp_store_interpolate(store, ref position, ref hint, out sh));
         }
 
+        /// <summary>tp_batch_options for threads (0 or 1 = the calling thread) and TP_BATCH_CHAIN_HINTS.</summary>
+        public static TpBatchOptions BatchOptions(int threads, bool chainHints)
+        {
+            if (threads < 0) throw new ArgumentOutOfRangeException("threads", threads, "threads must be >= 0");
+            var options = new TpBatchOptions();
+            Check(NativeMethods.tp_batch_options_init(ref options));
+            options.threads = (uint)threads;
+            options.flags = chainHints ? NativeMethods.BatchChainHints : 0u;
+            return options;
+        }
+
+        /// <summary>Batch interpolation with the library's default options (NULL).</summary>
         public static void InterpolateBatch(StoreHandle store, Vector3[] positions, int[] hints, SphericalHarmonicsL2[] results)
         {
             Check(NativeMethods.tp_store_interpolate_batch(store, (UIntPtr)positions.Length, positions, PositionStride,
-                hints, HintStride, results, ShStride));
+                hints, HintStride, results, ShStride, IntPtr.Zero));
+        }
+
+        public static void InterpolateBatch(StoreHandle store, Vector3[] positions, int[] hints, SphericalHarmonicsL2[] results,
+            TpBatchOptions options)
+        {
+            Check(NativeMethods.tp_store_interpolate_batch(store, (UIntPtr)positions.Length, positions, PositionStride,
+                hints, HintStride, results, ShStride, ref options));
         }
 
         public static void Weights(StoreHandle store, Vector3 position, ref int hint, uint[] probes, float[] weights)
@@ -117,10 +136,11 @@ namespace TetProbe
             Check(NativeMethods.tp_store_weights(store, ref position, ref hint, probes, weights));
         }
 
-        public static void WeightsBatch(StoreHandle store, Vector3[] positions, int[] hints, uint[] probes, float[] weights)
+        public static void WeightsBatch(StoreHandle store, Vector3[] positions, int[] hints, uint[] probes, float[] weights,
+            TpBatchOptions options)
         {
             Check(NativeMethods.tp_store_weights_batch(store, (UIntPtr)positions.Length, positions, PositionStride, hints,
-                HintStride, probes, FourStride, weights, FourStride));
+                HintStride, probes, FourStride, weights, FourStride, ref options));
         }
 
         public static NativeLocation Locate(StoreHandle store, Vector3 position, ref int hint)

@@ -8,7 +8,12 @@ namespace TetProbe
     public struct ProbeStoreInfo
     {
         public int FormatVersion, Dimension, Probes, InputProbes, MergedProbes, Cells, InnerCells, OuterCells, IndexBits;
+        /// <summary>The blob's TP_BUILD_* bits (1 no extrapolation, 2 32-bit indices, 4 compact layout).</summary>
+        public uint Flags;
+        /// <summary>False for the no-outer-cells build.</summary>
         public bool Extrapolation;
+        /// <summary>True for the compact layout (smallest blob), false for the fast one.</summary>
+        public bool Compact;
         public long Bytes;
         public Vector3 BoundsMin, BoundsMax;
     }
@@ -36,13 +41,17 @@ namespace TetProbe
         public static uint LibraryVersion { get { return NativeMethods.tp_version(); } }
 
         /// <summary>Builds a store from probe positions and their SH (null = zeros). extrapolate = false builds no
-        /// outer cells: queries outside the probes' hull then throw with TetProbeStatus.Outside.</summary>
-        public static ProbeStore Build(Vector3[] positions, SphericalHarmonicsL2[] sh, bool extrapolate = true)
+        /// outer cells: queries outside the probes' hull then throw with TetProbeStatus.Outside. compact = true writes
+        /// the compact layout (the smallest blob, neighbours rebuilt on load) that answers like the default fast one
+        /// (the same cells, weights within 1e-6).</summary>
+        public static ProbeStore Build(Vector3[] positions, SphericalHarmonicsL2[] sh, bool extrapolate = true,
+                                       bool compact = false)
         {
             if (positions == null) throw new ArgumentNullException("positions");
             if (sh != null && sh.Length != positions.Length)
                 throw new ArgumentException("sh has " + sh.Length + " entries for " + positions.Length + " positions", "sh");
-            return new ProbeStore(NativeProxy.Build(positions, sh, extrapolate ? 0u : NativeMethods.BuildNoExtrapolation));
+            uint flags = (extrapolate ? 0u : NativeMethods.BuildNoExtrapolation) | (compact ? NativeMethods.BuildCompact : 0u);
+            return new ProbeStore(NativeProxy.Build(positions, sh, flags));
         }
 
         /// <summary>Loads and validates a store file.</summary>
@@ -80,7 +89,8 @@ namespace TetProbe
                     FormatVersion = (int)n.format_version, Dimension = (int)n.dimension, Probes = (int)n.probes,
                     InputProbes = (int)n.input_probes, MergedProbes = (int)n.merged_probes, Cells = (int)n.cells,
                     InnerCells = (int)n.inner_cells, OuterCells = (int)n.outer_cells, IndexBits = (int)n.index_bits,
-                    Extrapolation = (n.flags & NativeMethods.BuildNoExtrapolation) == 0, Bytes = (long)n.bytes,
+                    Flags = n.flags, Extrapolation = (n.flags & NativeMethods.BuildNoExtrapolation) == 0,
+                    Compact = (n.flags & NativeMethods.BuildCompact) != 0, Bytes = (long)n.bytes,
                     BoundsMin = n.bounds_min, BoundsMax = n.bounds_max,
                 };
             }
@@ -98,16 +108,45 @@ namespace TetProbe
             NativeProxy.Interpolate(Live(), position, ref hint, out sh);
         }
 
-        /// <summary>Batch form: results[i] at positions[i]; hints (null = none) are read and updated.</summary>
+        /// <summary>Batch form: results[i] at positions[i]; hints (null = none) are read and updated. Positions
+        /// outside a store built without extrapolation throw TetProbeStatus.Outside naming the first.</summary>
         public void Interpolate(Vector3[] positions, int[] hints, SphericalHarmonicsL2[] results)
         {
+            CheckBatch(positions, hints, results == null ? -1 : results.Length, "results", 1, false);
+            NativeProxy.InterpolateBatch(Live(), positions, hints, results);
+        }
+
+        /// <summary>Batch form on up to `threads` threads (0 or 1 = the calling thread; results do not depend on it).
+        /// chainHints (only with hints == null): each query starts from the cell the previous one ended in, for
+        /// objects given in a spatially coherent order.</summary>
+        public void Interpolate(Vector3[] positions, int[] hints, SphericalHarmonicsL2[] results, int threads,
+                                bool chainHints = false)
+        {
+            CheckBatch(positions, hints, results == null ? -1 : results.Length, "results", 1, chainHints);
+            NativeProxy.InterpolateBatch(Live(), positions, hints, results, NativeProxy.BatchOptions(threads, chainHints));
+        }
+
+        /// <summary>Batch form of Weights: probes[4 i .. 4 i + 3] and weights[4 i .. 4 i + 3] for positions[i];
+        /// hints, threads and chainHints as the batch Interpolate.</summary>
+        public void Weights(Vector3[] positions, int[] hints, uint[] probes, float[] weights, int threads = 1,
+                            bool chainHints = false)
+        {
+            CheckBatch(positions, hints, probes == null ? -1 : probes.Length, "probes", 4, chainHints);
+            CheckBatch(positions, hints, weights == null ? -1 : weights.Length, "weights", 4, chainHints);
+            NativeProxy.WeightsBatch(Live(), positions, hints, probes, weights, NativeProxy.BatchOptions(threads, chainHints));
+        }
+
+        static void CheckBatch(Vector3[] positions, int[] hints, int outputLength, string output, int perPosition,
+                               bool chainHints)
+        {
             if (positions == null) throw new ArgumentNullException("positions");
-            if (results == null) throw new ArgumentNullException("results");
-            if (results.Length < positions.Length)
-                throw new ArgumentException("results holds " + results.Length + " for " + positions.Length + " positions", "results");
+            if (outputLength < 0) throw new ArgumentNullException(output);
+            if (outputLength < perPosition * (long)positions.Length)
+                throw new ArgumentException(output + " holds " + outputLength + " for " + positions.Length + " positions", output);
             if (hints != null && hints.Length < positions.Length)
                 throw new ArgumentException("hints holds " + hints.Length + " for " + positions.Length + " positions", "hints");
-            NativeProxy.InterpolateBatch(Live(), positions, hints, results);
+            if (hints != null && chainHints)
+                throw new ArgumentException("chainHints applies only to batches without hints", "hints");
         }
 
         /// <summary>The four input probes and weights a query at position blends (unused slots weigh 0).</summary>

@@ -36,7 +36,11 @@ using StorePtr = std::unique_ptr<tp_store, StoreRelease>;
 using ScenePtr = std::unique_ptr<tp_scene, SceneRelease>;
 
 StorePtr load_store(const std::string& path);
-StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress);
+// flags: TP_BUILD_* (e.g. TP_BUILD_COMPACT), on top of the library's default options.
+StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,
+                     uint32_t flags = 0);
+// "compact" or "fast": the layout of a store's blob (TP_BUILD_COMPACT in its flags).
+const char* store_layout(const tp_store_info& info);
 tp_store_info store_info(const tp_store* store);
 
 // Probe positions (3 per probe) and SH (27 per probe, or empty) read from a CSV or JSON file.

@@ -9,8 +9,9 @@ namespace {
 
 const char* const kUsage =
     "usage:\n"
-    "  tetprobe build INPUT.(csv|json) -o STORE      csv: x,y,z[,27 sh] per line; json: {\"probes\": [[x,y,z],...],\n"
-    "                                                \"sh\": [[27 floats],...]}\n"
+    "  tetprobe build INPUT.(csv|json) -o STORE [--compact]\n"
+    "                                                csv: x,y,z[,27 sh] per line; json: {\"probes\": [[x,y,z],...],\n"
+    "                                                \"sh\": [[27 floats],...]}; --compact: the smallest blob\n"
     "  tetprobe info STORE [--json]\n"
     "  tetprobe query STORE x y z [--weights] [--json]\n"
     "  tetprobe bake SCENE.json -o STORE [--rays N] [--bounces N] [--seed N] [--threads N]\n"

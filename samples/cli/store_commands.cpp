@@ -10,17 +10,17 @@
 namespace cli {
 
 int command_build(const std::vector<std::string>& args) {
-    const Arguments a = parse_arguments(args, {"-o"}, {});
+    const Arguments a = parse_arguments(args, {"-o"}, {"--compact"});
     if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("build takes INPUT and -o STORE");
     const ProbeFile input = read_probe_file(a.positional[0]);
     if (input.positions.empty()) throw Failure(a.positional[0] + ": no probes");
-    StorePtr store = build_store(input.positions, input.sh, false);
+    StorePtr store = build_store(input.positions, input.sh, false, a.has("--compact") ? TP_BUILD_COMPACT : 0u);
     const std::string out = a.value("-o", "");
     check(tp_store_save_file(store.get(), out.c_str()), "saving the store");
     const tp_store_info info = store_info(store.get());
-    std::printf("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %" PRIu64 " bytes%s\n", out.c_str(),
-                info.probes, info.merged_probes, info.cells, info.inner_cells, info.outer_cells, info.bytes,
-                input.sh.empty() ? " (no SH given: zeros)" : "");
+    std::printf("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %" PRIu64 " bytes, %s layout%s\n",
+                out.c_str(), info.probes, info.merged_probes, info.cells, info.inner_cells, info.outer_cells,
+                info.bytes, store_layout(info), input.sh.empty() ? " (no SH given: zeros)" : "");
     return 0;
 }
 
@@ -39,6 +39,7 @@ int command_info(const std::vector<std::string>& args) {
     j["inner_cells"] = i.inner_cells;
     j["outer_cells"] = i.outer_cells;
     j["index_bits"] = i.index_bits;
+    j["layout"] = store_layout(i);
     j["extrapolation"] = (i.flags & TP_BUILD_NO_EXTRAPOLATION) == 0;
     j["grid"] = {i.grid[0], i.grid[1], i.grid[2]};
     j["bytes"] = i.bytes;

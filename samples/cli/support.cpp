@@ -20,9 +20,11 @@ StorePtr load_store(const std::string& path) {
     return StorePtr(store);
 }
 
-StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress) {
+StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,
+                     uint32_t flags) {
     tp_build_options options;
     check(tp_build_options_init(&options), "tp_build_options_init");
+    options.flags |= flags;
     ProgressBar bar{"build"};
     if (show_progress) {
         options.progress = &ProgressBar::callback;
@@ -43,6 +45,8 @@ tp_store_info store_info(const tp_store* store) {
     check(tp_store_get_info(store, &info), "tp_store_get_info");
     return info;
 }
+
+const char* store_layout(const tp_store_info& info) { return (info.flags & TP_BUILD_COMPACT) ? "compact" : "fast"; }
 
 void write_file_atomically(const std::string& path, const void* data, size_t size) {
     const std::string temporary = path + ".tmp" + std::to_string(static_cast<long>(getpid()));

@@ -108,6 +108,7 @@ static void test_last_error_is_per_call(void) {
 
 static void test_option_struct_defaults(void) {
     tp_build_options build;
+    tp_batch_options batch;
     tp_bake_options bake;
     tp_material material;
     tp_light light;
@@ -115,6 +116,13 @@ static void test_option_struct_defaults(void) {
     memset(&bake, 0xAB, sizeof bake);
     memset(&material, 0xAB, sizeof material);
     memset(&light, 0xAB, sizeof light);
+    memset(&batch, 0xAB, sizeof batch);
+    EXPECT_OK(tp_batch_options_init(&batch));
+    CHECK(sizeof batch == 12);
+    CHECK(batch.struct_size == sizeof batch);
+    CHECK(batch.flags == 0);
+    CHECK(batch.threads == 1);
+    EXPECT_STATUS(tp_batch_options_init(NULL), TP_ERROR_INVALID_ARGUMENT);
     EXPECT_OK(tp_build_options_init(&build));
     CHECK(build.struct_size == sizeof build);
     CHECK(build.flags == 0);
@@ -478,12 +486,12 @@ static void test_store_queries(void) {
             EXPECT_OK(tp_store_interpolate(store, p, &single_hints[i], single + 27 * i));
             EXPECT_OK(tp_store_weights(store, p, NULL, single_probes + 4 * i, single_weights + 4 * i));
         }
-        EXPECT_OK(tp_store_interpolate_batch(store, M, points, 0, batch_hints, 0, batch, 0));
+        EXPECT_OK(tp_store_interpolate_batch(store, M, points, 0, batch_hints, 0, batch, 0, NULL));
         same &= memcmp(single, batch, sizeof single) == 0;
         same &= memcmp(single_hints, batch_hints, sizeof single_hints) == 0;
-        EXPECT_OK(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, batch, 0));
+        EXPECT_OK(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, batch, 0, NULL));
         same &= memcmp(single, batch, sizeof single) == 0;
-        EXPECT_OK(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 0, batch_weights, 0));
+        EXPECT_OK(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 0, batch_weights, 0, NULL));
         same &= memcmp(single_probes, batch_probes, sizeof single_probes) == 0;
         same &= memcmp(single_weights, batch_weights, sizeof single_weights) == 0;
         CHECK(same);
@@ -497,8 +505,9 @@ static void test_store_queries(void) {
             padded_hints[2 * i] = -1;
             padded_hints[2 * i + 1] = 12345;
         }
-        EXPECT_OK(tp_store_interpolate_batch(store, M, padded_points, 16, padded_hints, 8, padded_sh, 120));
-        EXPECT_OK(tp_store_weights_batch(store, M, padded_points, 16, NULL, 0, padded_probes, 20, padded_weights, 24));
+        EXPECT_OK(tp_store_interpolate_batch(store, M, padded_points, 16, padded_hints, 8, padded_sh, 120, NULL));
+        EXPECT_OK(tp_store_weights_batch(store, M, padded_points, 16, NULL, 0, padded_probes, 20,
+                                         padded_weights, 24, NULL));
         same = 1;
         for (i = 0; i < M; ++i) {
             same &= memcmp(padded_sh + 30 * i, single + 27 * i, 108) == 0;
@@ -514,23 +523,29 @@ static void test_store_queries(void) {
         CHECK(padding_kept);
 
         /* Strides too small for the element, a null buffer with a count, NaN among the points. */
-        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 8, NULL, 0, batch, 0), TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, batch_hints, 2, batch, 0),
+        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 8, NULL, 0, batch, 0, NULL),
                       TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, batch, 64), TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_interpolate_batch(store, M, NULL, 0, NULL, 0, batch, 0), TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, NULL, 0), TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_interpolate_batch(NULL, M, points, 0, NULL, 0, batch, 0), TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 8, batch_weights, 0),
+        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, batch_hints, 2, batch, 0, NULL),
                       TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, NULL, 0, batch_weights, 0),
+        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, batch, 64, NULL),
                       TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 0, NULL, 0),
+        EXPECT_STATUS(tp_store_interpolate_batch(store, M, NULL, 0, NULL, 0, batch, 0, NULL),
                       TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_OK(tp_store_interpolate_batch(store, 0, NULL, 0, NULL, 0, NULL, 0));
+        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, NULL, 0, NULL),
+                      TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_STATUS(tp_store_interpolate_batch(NULL, M, points, 0, NULL, 0, batch, 0, NULL),
+                      TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 8, batch_weights, 0, NULL),
+                      TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, NULL, 0, batch_weights, 0, NULL),
+                      TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 0, NULL, 0, NULL),
+                      TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_OK(tp_store_interpolate_batch(store, 0, NULL, 0, NULL, 0, NULL, 0, NULL));
         points[3 * 5 + 1] = (float)NAN;
-        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, batch, 0), TP_ERROR_INVALID_ARGUMENT);
-        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 0, batch_weights, 0),
+        EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, batch, 0, NULL),
+                      TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 0, batch_weights, 0, NULL),
                       TP_ERROR_INVALID_ARGUMENT);
     }
 
@@ -595,7 +610,7 @@ static void test_store_info_and_struct_size(void) {
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
     EXPECT_OK(tp_store_blob(store, &blob, &size));
-    CHECK(info.format_version >= 1);
+    CHECK(info.format_version == 3);
     CHECK(info.dimension == 3);
     CHECK(info.input_probes == CLOUD + 3);
     CHECK(info.probes == CLOUD);
@@ -670,14 +685,20 @@ static void test_store_info_and_struct_size(void) {
     tp_store_release(store);
 }
 
-/* FNV-1a 64 with the checksum field read as zero (store_format.h), to forge a consistent blob. */
-#define CHECKSUM_OFFSET 100
+/* The blob checksum of store_format.h, to forge a consistent blob: FNV-1a 64 over little-endian 64-bit
+   words (seeded with the size, the last word zero-padded), the checksum field read as zero. */
+#define CHECKSUM_OFFSET 104 /* format 3: after magic, 9 uint32 (axis included), grid, origin, bounds */
 static void repair_checksum(unsigned char* data, size_t size) {
-    unsigned long long hash = 14695981039346656037ull;
-    size_t i;
-    for (i = 0; i < size; ++i) {
-        unsigned char byte = (i >= CHECKSUM_OFFSET && i < CHECKSUM_OFFSET + 8) ? 0 : data[i];
-        hash ^= byte;
+    uint64_t hash = 14695981039346656037ull ^ (uint64_t)size;
+    size_t i, k;
+    for (i = 0; i < size; i += 8) {
+        uint64_t word = 0;
+        for (k = 0; k < 8 && i + k < size; ++k) {
+            const size_t at = i + k;
+            const unsigned char byte = (at >= CHECKSUM_OFFSET && at < CHECKSUM_OFFSET + 8) ? 0 : data[at];
+            word |= (uint64_t)byte << (8 * k);
+        }
+        hash ^= word;
         hash *= 1099511628211ull;
     }
     for (i = 0; i < 8; ++i) data[CHECKSUM_OFFSET + i] = (unsigned char)(hash >> (8 * i));
@@ -801,6 +822,361 @@ static void test_store_without_extrapolation(void) {
     CHECK((info.flags & TP_BUILD_NO_EXTRAPOLATION) != 0);
     EXPECT_OK(tp_store_interpolate(store, inside, NULL, out));
     EXPECT_STATUS(tp_store_interpolate(store, outside, NULL, out), TP_ERROR_OUTSIDE);
+    tp_store_release(store);
+}
+
+/* ---------------------------------------------------------------------------------------------- */
+/* Format 3: batch options (threads, chained hints), the compact layout, old formats refused. */
+
+/* 1 if text holds the decimal number n with no digit directly before or after it. */
+static int mentions_number(const char* text, unsigned long n) {
+    char digits[32];
+    const char* at = text;
+    size_t length;
+    sprintf(digits, "%lu", n);
+    length = strlen(digits);
+    while ((at = strstr(at, digits)) != NULL) {
+        int before = at > text && at[-1] >= '0' && at[-1] <= '9';
+        int after = at[length] >= '0' && at[length] <= '9';
+        if (!before && !after) return 1;
+        ++at;
+    }
+    return 0;
+}
+
+/* Weight of probe in the 4 slots (slots that repeat a probe add up). */
+static double weight_of(const uint32_t probes[4], const float weights[4], uint32_t probe) {
+    double sum = 0.0;
+    int k;
+    for (k = 0; k < 4; ++k)
+        if (probes[k] == probe) sum += weights[k];
+    return sum;
+}
+
+#define BIG_BATCH 10000
+
+static void test_batch_options(void) {
+    static float positions[3 * CLOUD], sh[27 * CLOUD];
+    static float points[3 * BIG_BATCH], one[27 * BIG_BATCH], two[27 * BIG_BATCH];
+    static int32_t hints_one[BIG_BATCH], hints_two[BIG_BATCH];
+    static uint32_t probes_one[4 * BIG_BATCH], probes_two[4 * BIG_BATCH];
+    static float weights_one[4 * BIG_BATCH], weights_two[4 * BIG_BATCH];
+    tp_store* store = build_cloud(positions, sh, 0);
+    tp_batch_options options;
+    int i;
+    if (!store) return;
+    /* Scattered points, inside and outside the cube the probes span. */
+    for (i = 0; i < 3 * BIG_BATCH; ++i) points[i] = uniform(-1.4, 1.4);
+
+    /* Unknown flags and a struct_size below the three fields are refused by both batch calls. */
+    tp_batch_options_init(&options);
+    options.flags = 2u;
+    EXPECT_STATUS(tp_store_interpolate_batch(store, 16, points, 0, NULL, 0, one, 0, &options),
+                  TP_ERROR_INVALID_ARGUMENT);
+    EXPECT_STATUS(tp_store_weights_batch(store, 16, points, 0, NULL, 0, probes_one, 0, weights_one, 0, &options),
+                  TP_ERROR_INVALID_ARGUMENT);
+    options.flags = 0x80000000u | TP_BATCH_CHAIN_HINTS;
+    EXPECT_STATUS(tp_store_interpolate_batch(store, 16, points, 0, NULL, 0, one, 0, &options),
+                  TP_ERROR_INVALID_ARGUMENT);
+    tp_batch_options_init(&options);
+    options.struct_size = 8;
+    EXPECT_STATUS(tp_store_interpolate_batch(store, 16, points, 0, NULL, 0, one, 0, &options),
+                  TP_ERROR_INVALID_ARGUMENT);
+    options.struct_size = 0;
+    EXPECT_STATUS(tp_store_weights_batch(store, 16, points, 0, NULL, 0, probes_one, 0, weights_one, 0, &options),
+                  TP_ERROR_INVALID_ARGUMENT);
+
+    /* threads = 2 gives the same bytes as threads = 1 (and as the defaults), hints included. */
+    for (i = 0; i < BIG_BATCH; ++i) hints_one[i] = hints_two[i] = -1;
+    tp_batch_options_init(&options);
+    EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, hints_one, 0, one, 0, &options));
+    options.threads = 2;
+    EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, hints_two, 0, two, 0, &options));
+    CHECK(memcmp(one, two, sizeof one) == 0);
+    CHECK(memcmp(hints_one, hints_two, sizeof hints_one) == 0);
+    EXPECT_OK(tp_store_weights_batch(store, BIG_BATCH, points, 0, NULL, 0, probes_two, 0, weights_two, 0, &options));
+    options.threads = 1;
+    EXPECT_OK(tp_store_weights_batch(store, BIG_BATCH, points, 0, NULL, 0, probes_one, 0, weights_one, 0, &options));
+    CHECK(memcmp(probes_one, probes_two, sizeof probes_one) == 0);
+    CHECK(memcmp(weights_one, weights_two, sizeof weights_one) == 0);
+    EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, NULL, 0, two, 0, NULL));
+    CHECK(memcmp(one, two, sizeof one) == 0);
+    options.threads = 0; /* 0 = the calling thread */
+    EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, NULL, 0, two, 0, &options));
+    CHECK(memcmp(one, two, sizeof one) == 0);
+    /* Each thread reads and writes only its own range of the hints: start them all from the answers. */
+    memcpy(hints_two, hints_one, sizeof hints_one);
+    options.threads = 2;
+    EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, hints_two, 0, two, 0, &options));
+    CHECK(memcmp(one, two, sizeof one) == 0);
+    CHECK(memcmp(hints_one, hints_two, sizeof hints_one) == 0);
+
+    /* TP_BATCH_CHAIN_HINTS without hints: the same answers as cold starts, scattered or coherent, on 1 and
+       2 threads. Inside the hull the cell holding a point is decided exactly: the same bytes from any start.
+       Outer cells accept a point within a weight tolerance, so near the face two of them share the start
+       decides which answers, and the answer (continuous across that face) may differ a little. */
+    {
+        static uint32_t kinds[BIG_BATCH];
+        int round, threads, same_inner = 1, inner_count = 0, located = 1;
+        double worst_outer_sh = 0.0, worst_outer_weight = 0.0;
+        for (round = 0; round < 2; ++round) {
+            if (round == 1)
+                for (i = 0; i < BIG_BATCH; ++i) {
+                    const double t = (double)i / (BIG_BATCH - 1);
+                    points[3 * i] = (float)(-1.2 + 2.4 * t);
+                    points[3 * i + 1] = (float)(0.7 * sin(11.0 * t));
+                    points[3 * i + 2] = (float)(0.8 * cos(7.0 * t));
+                }
+            for (i = 0; i < BIG_BATCH; ++i) {
+                tp_location location;
+                memset(&location, 0, sizeof location);
+                location.struct_size = sizeof location;
+                located &= tp_store_locate(store, points + 3 * i, NULL, &location) == TP_OK;
+                kinds[i] = location.cell_kind;
+                if (kinds[i] == TP_CELL_INNER) ++inner_count;
+            }
+            EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, NULL, 0, one, 0, NULL));
+            EXPECT_OK(tp_store_weights_batch(store, BIG_BATCH, points, 0, NULL, 0, probes_one, 0, weights_one, 0,
+                                             NULL));
+            for (threads = 1; threads <= 2; ++threads) {
+                tp_batch_options_init(&options);
+                options.flags = TP_BATCH_CHAIN_HINTS;
+                options.threads = (uint32_t)threads;
+                memset(two, 0, sizeof two);
+                EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, NULL, 0, two, 0, &options));
+                EXPECT_OK(tp_store_weights_batch(store, BIG_BATCH, points, 0, NULL, 0, probes_two, 0, weights_two, 0,
+                                                 &options));
+                for (i = 0; i < BIG_BATCH; ++i) {
+                    int k;
+                    if (kinds[i] == TP_CELL_INNER) {
+                        same_inner &= memcmp(one + 27 * i, two + 27 * i, 108) == 0;
+                        same_inner &= memcmp(probes_one + 4 * i, probes_two + 4 * i, 16) == 0;
+                        same_inner &= memcmp(weights_one + 4 * i, weights_two + 4 * i, 16) == 0;
+                        continue;
+                    }
+                    for (k = 0; k < 27; ++k)
+                        if (fabs(one[27 * i + k] - two[27 * i + k]) > worst_outer_sh)
+                            worst_outer_sh = fabs(one[27 * i + k] - two[27 * i + k]);
+                    for (k = 0; k < 8; ++k) {
+                        const uint32_t probe = k < 4 ? probes_one[4 * i + k] : probes_two[4 * i + k - 4];
+                        const double d = fabs(weight_of(probes_one + 4 * i, weights_one + 4 * i, probe) -
+                                              weight_of(probes_two + 4 * i, weights_two + 4 * i, probe));
+                        if (d > worst_outer_weight) worst_outer_weight = d;
+                    }
+                }
+            }
+        }
+        CHECK(located);
+        CHECK(inner_count > BIG_BATCH / 4 && inner_count < 2 * BIG_BATCH - BIG_BATCH / 4);
+        CHECK(same_inner);
+        CHECK_NEAR(worst_outer_sh, 0.0, 1e-4);
+        CHECK_NEAR(worst_outer_weight, 0.0, 5e-5);
+        /* With hints given the flag changes nothing: the hints are read and written as always. */
+        for (i = 0; i < BIG_BATCH; ++i) hints_one[i] = -1;
+        EXPECT_OK(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, hints_one, 0, two, 0, &options));
+        CHECK(memcmp(one, two, sizeof one) == 0);
+        CHECK(hints_one[0] >= 0 && hints_one[BIG_BATCH - 1] >= 0);
+    }
+    tp_store_release(store);
+}
+
+static tp_store* build_with_flags(const float* positions, const float* sh, size_t count, uint32_t flags) {
+    tp_build_options options;
+    tp_store* store = NULL;
+    tp_build_options_init(&options);
+    options.flags = flags;
+    EXPECT_OK(tp_store_build(positions, 0, sh, 0, count, &options, &store));
+    return store;
+}
+
+static tp_store_info info_of(const tp_store* store) {
+    tp_store_info info;
+    memset(&info, 0, sizeof info);
+    info.struct_size = sizeof info;
+    EXPECT_OK(tp_store_get_info(store, &info));
+    return info;
+}
+
+static void test_compact_layout(void) {
+    static float positions[3 * CLOUD], sh[27 * CLOUD];
+    static const uint32_t extra_flags[3] = {0u, TP_BUILD_INDEX32, TP_BUILD_NO_EXTRAPOLATION};
+    int variant;
+    make_cloud(positions, sh, CLOUD);
+    for (variant = 0; variant < 3; ++variant) {
+        const uint32_t extra = extra_flags[variant];
+        tp_store* fast = build_with_flags(positions, sh, CLOUD, extra);
+        tp_store* compact = build_with_flags(positions, sh, CLOUD, extra | TP_BUILD_COMPACT);
+        tp_store* reloaded = NULL;
+        tp_store_info fast_info, compact_info;
+        const void *fast_blob, *compact_blob, *reloaded_blob;
+        size_t fast_size = 0, compact_size = 0, reloaded_size = 0;
+        int i, k, same_cells = 1, same_kinds = 1, same_status = 1, walked_same = 1;
+        double worst = 0.0;
+        int32_t fast_hint = -1, compact_hint = -1;
+        if (!fast || !compact) {
+            tp_store_release(fast);
+            tp_store_release(compact);
+            return;
+        }
+        fast_info = info_of(fast);
+        compact_info = info_of(compact);
+        CHECK(fast_info.format_version == 3 && compact_info.format_version == 3);
+        CHECK(fast_info.flags == extra);
+        CHECK(compact_info.flags == (extra | TP_BUILD_COMPACT));
+        CHECK(compact_info.index_bits == fast_info.index_bits);
+        CHECK(compact_info.cells == fast_info.cells && compact_info.inner_cells == fast_info.inner_cells);
+        EXPECT_OK(tp_store_blob(fast, &fast_blob, &fast_size));
+        EXPECT_OK(tp_store_blob(compact, &compact_blob, &compact_size));
+        CHECK(compact_size < fast_size);
+        CHECK(compact_info.bytes == compact_size);
+
+        /* The same cell and weights within 1e-6, cold and walking, inside and outside the hull. */
+        for (i = 0; i < 2000; ++i) {
+            float p[3];
+            tp_location a, b;
+            tp_status sa, sb;
+            p[0] = uniform(-1.5, 1.5);
+            p[1] = uniform(-1.5, 1.5);
+            p[2] = uniform(-1.5, 1.5);
+            memset(&a, 0, sizeof a);
+            memset(&b, 0, sizeof b);
+            a.struct_size = b.struct_size = sizeof a;
+            sa = tp_store_locate(fast, p, NULL, &a);
+            sb = tp_store_locate(compact, p, NULL, &b);
+            if (sa != sb || (sa != TP_OK && sa != TP_ERROR_OUTSIDE)) same_status = 0;
+            if (sa != TP_OK || sb != TP_OK) continue;
+            if (a.cell != b.cell) same_cells = 0;
+            if (a.cell_kind != b.cell_kind) same_kinds = 0;
+            for (k = 0; k < 4; ++k) {
+                double d1 = fabs(weight_of(a.probes, a.weights, a.probes[k]) -
+                                 weight_of(b.probes, b.weights, a.probes[k]));
+                double d2 = fabs(weight_of(a.probes, a.weights, b.probes[k]) -
+                                 weight_of(b.probes, b.weights, b.probes[k]));
+                if (d1 > worst) worst = d1;
+                if (d2 > worst) worst = d2;
+            }
+            {
+                tp_status wa = tp_store_locate(fast, p, &fast_hint, &a);
+                tp_status wb = tp_store_locate(compact, p, &compact_hint, &b);
+                if (wa != wb || (wa == TP_OK && (a.cell != b.cell || fast_hint != compact_hint))) walked_same = 0;
+            }
+        }
+        CHECK(same_status);
+        CHECK(same_cells);
+        CHECK(same_kinds);
+        CHECK(walked_same);
+        CHECK_NEAR(worst, 0.0, 1e-6);
+
+        /* The compact blob round-trips byte for byte and stays compact. */
+        EXPECT_OK(tp_store_load(compact_blob, compact_size, &reloaded));
+        if (reloaded) {
+            const float p[3] = {0.2f, -0.3f, 0.4f};
+            float x[27], y[27];
+            EXPECT_OK(tp_store_blob(reloaded, &reloaded_blob, &reloaded_size));
+            CHECK(reloaded_size == compact_size && memcmp(reloaded_blob, compact_blob, compact_size) == 0);
+            CHECK((info_of(reloaded).flags & TP_BUILD_COMPACT) != 0);
+            EXPECT_OK(tp_store_interpolate(compact, p, NULL, x));
+            EXPECT_OK(tp_store_interpolate(reloaded, p, NULL, y));
+            CHECK(memcmp(x, y, sizeof x) == 0);
+            tp_store_release(reloaded);
+        }
+        tp_store_release(compact);
+        tp_store_release(fast);
+    }
+}
+
+/* A blob of another format version (only the uint32 at byte 8 changed, nothing repaired) is refused
+   as a version, not as corruption, and the message says to rebuild. */
+static void test_old_format_refused(void) {
+    static float positions[3 * CLOUD], sh[27 * CLOUD];
+    static const uint32_t versions[4] = {2u, 1u, 4u, 0u};
+    int layout, v;
+    make_cloud(positions, sh, CLOUD);
+    for (layout = 0; layout < 2; ++layout) {
+        tp_store* store = build_with_flags(positions, sh, CLOUD, layout ? TP_BUILD_COMPACT : 0u);
+        const void* blob;
+        size_t size = 0;
+        unsigned char* bytes;
+        if (!store) return;
+        EXPECT_OK(tp_store_blob(store, &blob, &size));
+        bytes = (unsigned char*)malloc(size);
+        if (!bytes) {
+            tp_store_release(store);
+            return;
+        }
+        memcpy(bytes, blob, size);
+        CHECK(bytes[8] == 3 && bytes[9] == 0 && bytes[10] == 0 && bytes[11] == 0);
+        for (v = 0; v < 4; ++v) {
+            tp_store* old = NULL;
+            bytes[8] = (unsigned char)versions[v];
+            EXPECT_STATUS(tp_store_load(bytes, size, &old), TP_ERROR_VERSION);
+            CHECK(strstr(tp_last_error(), "rebuild") != NULL);
+            CHECK(mentions_number(tp_last_error(), versions[v]));
+            CHECK(old == NULL);
+            tp_store_release(old);
+        }
+        bytes[8] = 3;
+        {
+            tp_store* again = NULL;
+            EXPECT_OK(tp_store_load(bytes, size, &again));
+            tp_store_release(again);
+        }
+        free(bytes);
+        tp_store_release(store);
+    }
+}
+
+/* A batch with queries outside a store without extrapolation: TP_ERROR_OUTSIDE naming the first,
+   zero SH and weights for those outside, the others answered. */
+static void test_outside_batch(void) {
+    static float positions[3 * CLOUD], sh[27 * CLOUD];
+    static float points[3 * BIG_BATCH], out[27 * BIG_BATCH], weights[4 * BIG_BATCH];
+    static uint32_t probes[4 * BIG_BATCH];
+    static int32_t hints[BIG_BATCH];
+    tp_store* store = build_cloud(positions, sh, TP_BUILD_NO_EXTRAPOLATION);
+    tp_batch_options options;
+    int i, k, zeros = 1, answered = 1;
+    if (!store) return;
+    for (i = 0; i < 3 * BIG_BATCH; ++i) points[i] = uniform(-0.9, 0.9);
+    for (i = 0; i < BIG_BATCH; ++i) hints[i] = -1;
+    points[3 * 17] = 3.0f;
+    points[3 * 29 + 1] = -2.5f;
+    EXPECT_STATUS(tp_store_interpolate_batch(store, 40, points, 0, hints, 0, out, 0, NULL), TP_ERROR_OUTSIDE);
+    CHECK(mentions_number(tp_last_error(), 17));
+    CHECK(!mentions_number(tp_last_error(), 29));
+    for (k = 0; k < 27; ++k) zeros &= out[27 * 17 + k] == 0.0f && out[27 * 29 + k] == 0.0f;
+    for (i = 0; i < 40; ++i) {
+        float single[27];
+        if (i == 17 || i == 29) continue;
+        EXPECT_OK(tp_store_interpolate(store, points + 3 * i, NULL, single));
+        answered &= memcmp(single, out + 27 * i, sizeof single) == 0;
+    }
+    CHECK(zeros);
+    CHECK(answered);
+    EXPECT_STATUS(tp_store_weights_batch(store, 40, points, 0, NULL, 0, probes, 0, weights, 0, NULL), TP_ERROR_OUTSIDE);
+    CHECK(mentions_number(tp_last_error(), 17));
+    zeros = 1;
+    for (k = 0; k < 4; ++k) zeros &= weights[4 * 17 + k] == 0.0f && weights[4 * 29 + k] == 0.0f;
+    CHECK(zeros);
+    CHECK_NEAR(weights[0] + weights[1] + weights[2] + weights[3], 1.0, 1e-5);
+
+    /* Split over 2 threads: the first outside query of the whole batch is named, whichever range has it. */
+    points[3 * 17] = 0.0f;
+    points[3 * 29 + 1] = 0.0f;
+    points[3 * 8000 + 2] = 4.0f; /* second range */
+    tp_batch_options_init(&options);
+    options.threads = 2;
+    EXPECT_STATUS(tp_store_interpolate_batch(store, BIG_BATCH, points, 0, NULL, 0, out, 0, &options),
+                  TP_ERROR_OUTSIDE);
+    CHECK(mentions_number(tp_last_error(), 8000));
+    points[3 * 3000] = -4.0f; /* first range */
+    EXPECT_STATUS(tp_store_weights_batch(store, BIG_BATCH, points, 0, NULL, 0, probes, 0, weights, 0, &options),
+                  TP_ERROR_OUTSIDE);
+    CHECK(mentions_number(tp_last_error(), 3000));
+    CHECK(!mentions_number(tp_last_error(), 8000));
+    zeros = 1;
+    for (k = 0; k < 4; ++k) zeros &= weights[4 * 3000 + k] == 0.0f && weights[4 * 8000 + k] == 0.0f;
+    CHECK(zeros);
     tp_store_release(store);
 }
 
@@ -1172,6 +1548,10 @@ int main(int argc, char** argv) {
     test_store_info_and_struct_size();
     test_store_blobs_and_files();
     test_store_without_extrapolation();
+    test_batch_options();
+    test_compact_layout();
+    test_old_format_refused();
+    test_outside_batch();
     test_small_sets();
     test_shadow_caster_volumes();
     test_scene_and_bake();

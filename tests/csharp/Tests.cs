@@ -1,5 +1,6 @@
 // Tests of the C# binding against the real library: exactness at probes, a linear field reproduced,
-// batch = single, hints, blob and file round trips, errors as TetProbeException, SH layout.
+// batch = single, hints, blob and file round trips, errors as TetProbeException, SH layout, the compact
+// layout, batch threads and chained hints, format-2 blobs refused.
 using System;
 using System.IO;
 using System.Runtime.InteropServices;
@@ -228,6 +229,165 @@ static class Tests
         Throws<ObjectDisposedException>(() => { var i = store.Info; }, "use after Dispose");
     }
 
+    static Vector3[] Scattered(int n, Random random, float low, float high)
+    {
+        var points = new Vector3[n];
+        for (int i = 0; i < n; ++i)
+            points[i] = new Vector3(low + (high - low) * (float)random.NextDouble(), low + (high - low) * (float)random.NextDouble(),
+                                    low + (high - low) * (float)random.NextDouble());
+        return points;
+    }
+
+    static int[] Fresh(int n)
+    {
+        var hints = new int[n];
+        for (int i = 0; i < n; ++i) hints[i] = -1;
+        return hints;
+    }
+
+    static bool SameSh(SphericalHarmonicsL2[] a, SphericalHarmonicsL2[] b)
+    {
+        if (a.Length != b.Length) return false;
+        for (int i = 0; i < a.Length; ++i)
+            if (!(a[i] == b[i])) return false;
+        return true;
+    }
+
+    static bool SameInts(int[] a, int[] b)
+    {
+        if (a.Length != b.Length) return false;
+        for (int i = 0; i < a.Length; ++i)
+            if (a[i] != b[i]) return false;
+        return true;
+    }
+
+    // Weight of `probe` in query i (slots that repeat a probe add up).
+    static double WeightOf(uint[] probes, float[] weights, int i, uint probe)
+    {
+        double sum = 0;
+        for (int k = 0; k < 4; ++k)
+            if (probes[4 * i + k] == probe) sum += weights[4 * i + k];
+        return sum;
+    }
+
+    static void LayoutsAndBatchOptions()
+    {
+        var random = new Random(13);
+        Vector3[] positions = Cloud(400, random);
+        var sh = new SphericalHarmonicsL2[positions.Length];
+        for (int i = 0; i < positions.Length; ++i) sh[i] = FieldSh(positions[i]);
+        using (ProbeStore fast = ProbeStore.Build(positions, sh))
+        using (ProbeStore compact = ProbeStore.Build(positions, sh, true, true))
+        {
+            ProbeStoreInfo fi = fast.Info, ci = compact.Info;
+            Check(fi.FormatVersion == 3 && ci.FormatVersion == 3, "format version 3");
+            Check(!fi.Compact && ci.Compact && (ci.Flags & 4u) != 0 && (fi.Flags & 4u) == 0, "compact flag in info");
+            Check(ci.Bytes < fi.Bytes, "compact blob is smaller (" + ci.Bytes + " < " + fi.Bytes + ")");
+            Check(ci.Cells == fi.Cells && ci.InnerCells == fi.InnerCells, "same cells in both layouts");
+
+            // Inside and outside the cube [-1, 1]^3 the probes span.
+            Vector3[] points = Scattered(3000, random, -1.6f, 1.6f);
+            int[] fastHints = Fresh(points.Length), compactHints = Fresh(points.Length);
+            var fastProbes = new uint[4 * points.Length];
+            var compactProbes = new uint[4 * points.Length];
+            var fastWeights = new float[4 * points.Length];
+            var compactWeights = new float[4 * points.Length];
+            fast.Weights(points, fastHints, fastProbes, fastWeights);
+            compact.Weights(points, compactHints, compactProbes, compactWeights);
+            Check(SameInts(fastHints, compactHints), "compact and fast layouts find the same cells");
+            double worst = 0;
+            for (int i = 0; i < points.Length; ++i)
+                for (int k = 0; k < 4; ++k)
+                {
+                    worst = Math.Max(worst, Math.Abs(WeightOf(fastProbes, fastWeights, i, fastProbes[4 * i + k]) -
+                                                     WeightOf(compactProbes, compactWeights, i, fastProbes[4 * i + k])));
+                    worst = Math.Max(worst, Math.Abs(WeightOf(fastProbes, fastWeights, i, compactProbes[4 * i + k]) -
+                                                     WeightOf(compactProbes, compactWeights, i, compactProbes[4 * i + k])));
+                }
+            Check(worst <= 1e-6, "compact and fast weights within 1e-6 (worst " + worst + ")");
+            using (ProbeStore reloaded = ProbeStore.Load(compact.Save()))
+                Check(reloaded.Info.Compact && reloaded.Info.Bytes == ci.Bytes, "a compact blob loads as compact");
+
+            // Threads: a batch large enough to be split gives the same answers as one thread.
+            Vector3[] many = Scattered(10000, random, -1.3f, 1.3f);
+            var one = new SphericalHarmonicsL2[many.Length];
+            var two = new SphericalHarmonicsL2[many.Length];
+            int[] oneHints = Fresh(many.Length), twoHints = Fresh(many.Length);
+            fast.Interpolate(many, oneHints, one, 1);
+            fast.Interpolate(many, twoHints, two, 2);
+            Check(SameSh(one, two) && SameInts(oneHints, twoHints), "threads = 2 equals threads = 1");
+            var defaults = new SphericalHarmonicsL2[many.Length];
+            fast.Interpolate(many, null, defaults);
+            Check(SameSh(one, defaults), "default options (null) equal threads = 1");
+
+            // Chained hints without a hint array answer like cold starts: the same bytes inside the hull, where
+            // the cell holding a point is decided exactly; outer cells accept a point within a weight tolerance,
+            // so near the face two of them share the start decides which answers (continuously).
+            var inner = new bool[many.Length];
+            for (int i = 0; i < many.Length; ++i)
+            {
+                int h = -1;
+                inner[i] = !fast.Locate(many[i], ref h).Outer;
+            }
+            var chained = new SphericalHarmonicsL2[many.Length];
+            fast.Interpolate(many, null, chained, 2, true);
+            var chainedProbes = new uint[4 * many.Length];
+            var chainedWeights = new float[4 * many.Length];
+            var coldProbes = new uint[4 * many.Length];
+            var coldWeights = new float[4 * many.Length];
+            fast.Weights(many, null, chainedProbes, chainedWeights, 1, true);
+            fast.Weights(many, null, coldProbes, coldWeights);
+            bool sameInner = true;
+            int innerCount = 0;
+            double worstOuter = 0;
+            for (int i = 0; i < many.Length; ++i)
+            {
+                if (inner[i])
+                {
+                    ++innerCount;
+                    sameInner &= one[i] == chained[i];
+                    for (int k = 0; k < 4; ++k)
+                        sameInner &= coldProbes[4 * i + k] == chainedProbes[4 * i + k] &&
+                                     coldWeights[4 * i + k] == chainedWeights[4 * i + k];
+                }
+                else
+                {
+                    worstOuter = Math.Max(worstOuter, MaxDifference(one[i], chained[i], false));
+                }
+            }
+            Check(innerCount > 1000 && innerCount < many.Length - 1000, "chained batch: points inside and outside");
+            Check(sameInner, "chained hints give the same answers inside the hull");
+            Check(worstOuter <= 1e-4, "chained hints within 1e-4 in outer cells (worst " + worstOuter + ")");
+            Throws<ArgumentException>(() => fast.Interpolate(many, Fresh(many.Length), chained, 1, true),
+                                      "chainHints with a hint array");
+            Throws<ArgumentOutOfRangeException>(() => fast.Interpolate(many, null, chained, -1), "negative threads");
+            Throws<ArgumentException>(() => fast.Weights(many, null, new uint[4], chainedWeights), "short probes array");
+
+            // A format-2 blob: only the version field changed (not even the checksum); refused as a version.
+            byte[] blob = fast.Save();
+            Check(BitConverter.ToUInt32(blob, 8) == 3, "format version at byte 8");
+            var old = (byte[])blob.Clone();
+            old[8] = 2; old[9] = 0; old[10] = 0; old[11] = 0;
+            Throws<TetProbeException>(() => ProbeStore.Load(old), "format-2 blob",
+                                      e => e.Status == TetProbeStatus.Version && e.Message.ToLowerInvariant().Contains("rebuild"));
+        }
+
+        using (ProbeStore closed = ProbeStore.Build(positions, sh, false))
+        {
+            Vector3[] points = Scattered(50, random, -0.5f, 0.5f);
+            points[23] = new Vector3(5, 0, 0);
+            points[41] = new Vector3(0, -5, 0);
+            var results = new SphericalHarmonicsL2[points.Length];
+            Throws<TetProbeException>(() => closed.Interpolate(points, null, results, 2), "outside batch",
+                                      e => e.Status == TetProbeStatus.Outside &&
+                                           System.Text.RegularExpressions.Regex.IsMatch(e.Message, "\\b23\\b"));
+            bool zeros = true;
+            for (int k = 0; k < 27; ++k) zeros &= results[23][k / 9, k % 9] == 0 && results[41][k / 9, k % 9] == 0;
+            Check(zeros, "outside queries of a batch get zero SH");
+            Check(!(results[0] == new SphericalHarmonicsL2()), "inside queries of a failed batch are answered");
+        }
+    }
+
     static void Volumes()
     {
         float[] cube = { 1, 0, 0, 1, -1, 0, 0, 1, 0, 1, 0, 1, 0, -1, 0, 1, 0, 0, 1, 1, 0, 0, -1, 1 };
@@ -247,7 +407,8 @@ static class Tests
         string scratch = args.Length > 0 ? args[0] : Path.GetTempPath();
         Directory.CreateDirectory(scratch);
         foreach (Action<string> test in new Action<string>[] {
-                     s => Layout(), s => ShHelpers(), s => Queries(), RoundTrips, s => Volumes() })
+                     s => Layout(), s => ShHelpers(), s => Queries(), s => LayoutsAndBatchOptions(), RoundTrips,
+                     s => Volumes() })
         {
             try
             {
@@ -266,5 +427,5 @@ static class Tests
 
 static class NativeProxyVersion
 {
-    public const uint Major = 0, Minor = 4;
+    public const uint Major = 0, Minor = 5;
 }

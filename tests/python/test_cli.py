@@ -34,19 +34,31 @@ def test_build_from_csv_then_info_and_query(tmp_path):
     csv.write_text("\n".join(lines) + "\n")
     store_path = tmp_path / "probes.tpb"
     out = run("build", csv, "-o", store_path).stdout
-    assert "40 probes" in out
+    assert "40 probes" in out and "fast layout" in out
     assert Store.load(str(store_path)).to_bytes() == Store.build(positions, sh).to_bytes()
 
     info = json.loads(run("info", store_path, "--json").stdout)
     assert info["probes"] == 40 and info["cells"] == info["inner_cells"] + info["outer_cells"]
     assert info["bytes"] == store_path.stat().st_size
+    assert info["format_version"] == 3 and info["layout"] == "fast"
     text = run("info", store_path).stdout
-    assert "probes:" in text and "index_bits:" in text
+    assert "probes:" in text and "index_bits:" in text and 'layout:         "fast"' in text
+
+    compact_path = tmp_path / "compact.tpb"
+    out = run("build", csv, "-o", compact_path, "--compact").stdout
+    assert "40 probes" in out and "compact layout" in out
+    assert Store.load(str(compact_path)).to_bytes() == Store.build(positions, sh, compact=True).to_bytes()
+    compact_info = json.loads(run("info", compact_path, "--json").stdout)
+    assert compact_info["layout"] == "compact" and compact_info["bytes"] < info["bytes"]
+    assert compact_info["cells"] == info["cells"]
+    assert 'layout:         "compact"' in run("info", compact_path).stdout
 
     point = positions[:4].mean(axis=0)
     answer = json.loads(run("query", store_path, *point, "--weights", "--json").stdout)
     expected, _ = Store.build(positions, sh).interpolate(point)
     assert np.allclose(answer["sh"], expected, atol=1e-5)
+    compact_answer = json.loads(run("query", compact_path, *point, "--weights", "--json").stdout)
+    assert compact_answer["cell"] == answer["cell"] and np.allclose(compact_answer["sh"], answer["sh"], atol=1e-5)
     assert abs(sum(answer["weights"]) - 1.0) < 1e-5
     plain = run("query", store_path, *point, "--weights").stdout
     assert "weight" in plain and "cell" in plain
@@ -81,6 +93,7 @@ def test_errors_are_messages_and_non_zero_exits(tmp_path):
     result = run("build", nan_csv, "-o", tmp_path / "x.tpb", ok=False)
     assert result.returncode == 1 and "TP_ERROR_INVALID_ARGUMENT" in result.stderr
     assert run("query", garbage, "x", 0, 0, ok=False).returncode == 2
+    assert run("build", bad_csv, "-o", tmp_path / "x.tpb", "--compactt", ok=False).returncode == 2
     assert run("frobnicate", ok=False).returncode == 2
     assert run(ok=False).returncode == 2
     result = run("build", bad_csv, "-o", "/nonexistent-dir/x.tpb", ok=False)

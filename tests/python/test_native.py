@@ -35,6 +35,14 @@ def test_argument_counts_match_the_header():
         assert count == len(argtypes), name
 
 
+def test_flag_values_match_the_header():
+    defines = dict(re.findall(r"#define\s+(TP_\w+)\s+(\d+)u", header_text()))
+    assert int(defines["TP_BUILD_NO_EXTRAPOLATION"]) == _native.BUILD_NO_EXTRAPOLATION
+    assert int(defines["TP_BUILD_INDEX32"]) == _native.BUILD_INDEX32
+    assert int(defines["TP_BUILD_COMPACT"]) == _native.BUILD_COMPACT
+    assert int(defines["TP_BATCH_CHAIN_HINTS"]) == _native.BATCH_CHAIN_HINTS
+
+
 def test_status_enum_matches_the_header():
     values = dict(re.findall(r"(TP_\w+)\s*=\s*(\d+)", header_text()))
     for status in Status:
@@ -55,6 +63,11 @@ def test_struct_sizes_are_what_the_library_fills():
     material = _native.Material()
     assert _native.lib.tp_material_init(ctypes.byref(material)) == 0
     assert material.struct_size == ctypes.sizeof(_native.Material)
+    batch = _native.BatchOptions()
+    assert ctypes.sizeof(batch) == 12
+    assert _native.lib.tp_batch_options_init(ctypes.byref(batch)) == 0
+    assert batch.struct_size == ctypes.sizeof(_native.BatchOptions)
+    assert (batch.flags, batch.threads) == (0, 1)
     light = _native.Light()
     assert _native.lib.tp_light_init(ctypes.byref(light)) == 0
     assert light.struct_size == ctypes.sizeof(_native.Light)
@@ -63,12 +76,15 @@ def test_struct_sizes_are_what_the_library_fills():
 def test_version_matches_and_a_mismatch_is_refused():
     assert tetprobe.library_version()[:2] == _native.PACKAGE_VERSION[:2]
     assert tetprobe.__version__.startswith("%d.%d." % _native.PACKAGE_VERSION[:2])
-    _native.check_version((0 << 16) | (4 << 8) | 7, (0, 4, 0))  # another patch is fine
+    assert _native.PACKAGE_VERSION[:2] == (0, 5)
+    _native.check_version((0 << 16) | (5 << 8) | 7, (0, 5, 0))  # another patch is fine
     with pytest.raises(Error) as raised:
-        _native.check_version((0 << 16) | (5 << 8), (0, 4, 0))
+        _native.check_version((0 << 16) | (4 << 8), (0, 5, 0))  # the 0.4 library (format 2 stores)
     assert raised.value.status == Status.VERSION
     with pytest.raises(Error):
-        _native.check_version((1 << 16) | (4 << 8), (0, 4, 0))
+        _native.check_version((0 << 16) | (6 << 8), (0, 5, 0))
+    with pytest.raises(Error):
+        _native.check_version((1 << 16) | (5 << 8), (0, 5, 0))
 
 
 def test_library_search_order_starts_with_the_environment(monkeypatch):

@@ -1,4 +1,7 @@
-"""Store: build, queries against scipy's Delaunay interpolation, exactness, round trips, errors."""
+"""Store: build, queries against scipy's Delaunay interpolation, exactness, round trips, errors, layouts."""
+import re
+import struct
+
 import numpy as np
 import pytest
 from scipy.interpolate import LinearNDInterpolator
@@ -300,3 +303,144 @@ def test_context_manager_and_repr():
         assert "30 probes" in repr(store)
     assert "closed" in repr(store)
     assert isinstance(tetprobe.Error(1, "x"), RuntimeError)
+
+
+# ---- format 3: layouts, batch options, version
+
+def dense_weights(indices, weights, probes):
+    """Per-query weights as a dense [M, probes] matrix (slot order and repeated unused slots drop out)."""
+    dense = np.zeros((indices.shape[0], probes), dtype=np.float64)
+    np.add.at(dense, (np.repeat(np.arange(indices.shape[0]), 4), indices.reshape(-1)), weights.reshape(-1))
+    return dense
+
+
+def mixed_points(m, seed, low=-0.5, high=1.5):
+    """Random points in a box around the unit cube: some inside the probes' hull, many outside."""
+    return np.random.default_rng(seed).uniform(low, high, (m, 3)).astype(np.float32)
+
+
+@pytest.mark.parametrize("index32", [False, True])
+def test_compact_layout_answers_like_the_fast_layout(index32):
+    positions, sh = random_set(500, 201)
+    fast = Store.build(positions, sh, index32=index32)
+    compact = Store.build(positions, sh, compact=True, index32=index32)
+    fast_info, compact_info = fast.info(), compact.info()
+    assert not fast_info["compact"] and compact_info["compact"]
+    assert compact_info["flags"] & tetprobe._native.BUILD_COMPACT
+    assert not fast_info["flags"] & tetprobe._native.BUILD_COMPACT
+    assert fast_info["format_version"] == 3 and compact_info["format_version"] == 3
+    assert compact_info["bytes"] < fast_info["bytes"]
+    for key in ("probes", "cells", "inner_cells", "outer_cells", "index_bits"):
+        assert compact_info[key] == fast_info[key], key
+    points = mixed_points(4000, 202, -0.3, 1.3)
+    tri = Delaunay(positions.astype(np.float64))
+    inside = tri.find_simplex(points.astype(np.float64)) >= 0
+    assert 500 < inside.sum() < len(points) - 500  # both inside and outside the hull
+    fast_indices, fast_weights, fast_cells = fast.weights(points)
+    compact_indices, compact_weights, compact_cells = compact.weights(points)
+    assert np.array_equal(fast_cells, compact_cells)
+    assert np.max(np.abs(dense_weights(fast_indices, fast_weights, 500) -
+                         dense_weights(compact_indices, compact_weights, 500))) <= 1e-6
+    fast_sh, _ = fast.interpolate(points)
+    compact_sh, _ = compact.interpolate(points)
+    assert np.max(np.abs(fast_sh - compact_sh)) <= 1e-5
+    # The compact blob round-trips and stays compact (neighbours rebuilt on load answer the same).
+    again = Store.load(compact.to_bytes())
+    assert again.info()["compact"] and again.to_bytes() == compact.to_bytes()
+    _, again_weights, again_cells = again.weights(points, fast_cells)
+    assert np.array_equal(again_cells, fast_cells)
+    assert np.array_equal(again_weights, compact_weights)
+
+
+def test_threads_give_the_same_answers_as_one_thread():
+    positions, sh = random_set(300, 211)
+    store = Store.build(positions, sh)
+    points = mixed_points(12000, 212)  # enough for the library to split the batch over 2 threads
+    one, one_cells = store.interpolate(points, threads=1)
+    two, two_cells = store.interpolate(points, threads=2)
+    assert np.array_equal(one, two) and np.array_equal(one_cells, two_cells)
+    indices1, weights1, cells1 = store.weights(points, threads=1)
+    indices2, weights2, cells2 = store.weights(points, threads=2)
+    assert np.array_equal(indices1, indices2) and np.array_equal(weights1, weights2)
+    assert np.array_equal(cells1, one_cells) and np.array_equal(cells2, one_cells)
+    zero, _ = store.interpolate(points, threads=0)  # 0 = the calling thread
+    assert np.array_equal(zero, one)
+    # With hints given, every thread reads and updates its own range of them.
+    hinted, hinted_cells = store.interpolate(points, one_cells, threads=2)
+    assert np.array_equal(hinted, one) and np.array_equal(hinted_cells, one_cells)
+    with pytest.raises(ValueError):
+        store.interpolate(points, threads=-1)
+
+
+def test_chained_hints_give_the_same_answers_as_cold_starts():
+    positions, sh = random_set(400, 221)
+    store = Store.build(positions, sh)
+    # A spatially coherent path (the case chaining is for) and scattered points, inside and outside.
+    t = np.linspace(0.0, 1.0, 3000)
+    path = np.stack([-0.3 + 1.6 * t, 0.5 + 0.3 * np.sin(9 * t), 0.5 + 0.6 * np.cos(5 * t)], axis=1).astype(np.float32)
+    for points in (path, mixed_points(3000, 222)):
+        inner = np.array([store.locate(p)["kind"] == "inner" for p in points])
+        assert 300 < inner.sum() < len(points) - 300
+        cold, cold_cells = store.interpolate(points)
+        indices, weights, _ = store.weights(points)
+        for threads in (1, 2):
+            repeat = 1 if threads == 1 else 4  # 12,000 queries: split over 2 threads
+            chained, chained_cells = store.interpolate(np.tile(points, (repeat, 1)), chain_hints=True, threads=threads)
+            assert chained_cells is None  # no hint buffer: the library reports no cells
+            chained_indices, chained_weights, _ = store.weights(np.tile(points, (repeat, 1)), chain_hints=True,
+                                                                threads=threads)
+            for r in range(repeat):
+                rows_ = slice(r * len(points), (r + 1) * len(points))
+                # Inside the hull the cell holding a point is decided exactly: the same bytes from any start.
+                assert np.array_equal(chained[rows_][inner], cold[inner])
+                assert np.array_equal(chained_indices[rows_][inner], indices[inner])
+                assert np.array_equal(chained_weights[rows_][inner], weights[inner])
+                # Outer cells accept a point within a weight tolerance, so near the face two of them share
+                # the start decides which answers; the answer is continuous across that face.
+                assert np.max(np.abs(chained[rows_] - cold)) <= 1e-4
+                assert np.max(np.abs(dense_weights(chained_indices[rows_], chained_weights[rows_], 400) -
+                                     dense_weights(indices, weights, 400))) <= 5e-5
+    value, hint = store.interpolate(path[0], chain_hints=True)
+    assert hint is None and np.allclose(value, store.interpolate(path[0])[0], atol=1e-4)
+    with pytest.raises(ValueError):
+        store.interpolate(path, hints=np.full(len(path), -1), chain_hints=True)
+
+
+def test_outside_batch_names_the_first_outside_query():
+    positions, sh = random_set(80, 231)
+    closed = Store.build(positions, sh, extrapolate=False)
+    tri = Delaunay(positions.astype(np.float64))
+    points = inside_points(tri, 60, 233, 0.2, 0.8)
+    assert len(points) == 60
+    points[37] = (3.0, 0.5, 0.5)
+    points[52] = (0.5, -4.0, 0.5)
+    for call in (closed.interpolate, closed.weights):
+        for threads in (1, 2):
+            with pytest.raises(Error) as raised:
+                call(points, threads=threads)
+            assert raised.value.status == Status.OUTSIDE
+            assert re.search(r"\b37\b", raised.value.message), raised.value.message
+
+
+def test_format_2_blob_is_refused_with_a_version_error():
+    positions, sh = random_set(50, 241)
+    for compact in (False, True):
+        blob = bytearray(Store.build(positions, sh, compact=compact).to_bytes())
+        assert struct.unpack_from("<I", blob, 8)[0] == 3
+        for version in (2, 1, 4, 99):
+            old = bytearray(blob)
+            struct.pack_into("<I", old, 8, version)  # nothing else fixed: not even the checksum
+            with pytest.raises(Error) as raised:
+                Store.load(bytes(old))
+            assert raised.value.status == Status.VERSION
+            assert "rebuild" in raised.value.message.lower()
+            assert str(version) in raised.value.message
+
+
+def test_info_flags_are_the_blobs_build_flags():
+    positions, sh = random_set(40, 251)
+    info = Store.build(positions, sh).info()
+    assert info["flags"] == 0 and not info["compact"] and info["extrapolation"]
+    closed = Store.build(positions, sh, compact=True, extrapolate=False, index32=True).info()
+    assert closed["flags"] == (tetprobe._native.BUILD_COMPACT | tetprobe._native.BUILD_NO_EXTRAPOLATION |
+                               tetprobe._native.BUILD_INDEX32)

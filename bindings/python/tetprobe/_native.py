@@ -14,12 +14,14 @@ from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c
 from .errors import Error, Status
 
 #: The library version this package was written for; major.minor must match the loaded library.
-PACKAGE_VERSION = (0, 4, 0)
+PACKAGE_VERSION = (0, 5, 0)
 
 SH_FLOATS = 27
 
 BUILD_NO_EXTRAPOLATION = 1
 BUILD_INDEX32 = 2
+BUILD_COMPACT = 4
+BATCH_CHAIN_HINTS = 1
 BAKE_NO_CULLING = 1
 CELL_INNER = 0
 CELL_OUTER = 1
@@ -43,6 +45,10 @@ class StoreInfo(Structure):
                 ("cells", c_uint32), ("inner_cells", c_uint32), ("outer_cells", c_uint32),
                 ("index_bits", c_uint32), ("flags", c_uint32), ("grid", c_uint32 * 3), ("bytes", c_uint64),
                 ("origin", c_double * 3), ("bounds_min", c_float * 3), ("bounds_max", c_float * 3)]
+
+
+class BatchOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("flags", c_uint32), ("threads", c_uint32)]
 
 
 class Location(Structure):
@@ -108,11 +114,12 @@ PROTOTYPES = (
     ("tp_store_get_info", _status, (_handle, POINTER(StoreInfo))),
     ("tp_store_probe_sh", _status, (_handle, c_uint32, _buffer)),
     ("tp_store_interpolate", _status, (_handle, _buffer, POINTER(c_int32), _buffer)),
+    ("tp_batch_options_init", _status, (POINTER(BatchOptions),)),
     ("tp_store_interpolate_batch", _status, (_handle, c_size_t, _buffer, c_size_t, _buffer, c_size_t, _buffer,
-                                             c_size_t)),
+                                             c_size_t, POINTER(BatchOptions))),
     ("tp_store_weights", _status, (_handle, _buffer, POINTER(c_int32), _buffer, _buffer)),
     ("tp_store_weights_batch", _status, (_handle, c_size_t, _buffer, c_size_t, _buffer, c_size_t, _buffer,
-                                         c_size_t, _buffer, c_size_t)),
+                                         c_size_t, _buffer, c_size_t, POINTER(BatchOptions))),
     ("tp_store_locate", _status, (_handle, _buffer, POINTER(c_int32), POINTER(Location))),
     ("tp_sh_eval_radiance", _status, (_buffer, _buffer, _buffer)),
     ("tp_sh_eval_irradiance", _status, (_buffer, _buffer, _buffer)),

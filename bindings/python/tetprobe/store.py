@@ -26,10 +26,12 @@ class Store(NativeHandle):
     # ---- creation
 
     @classmethod
-    def build(cls, positions, sh=None, *, extrapolate=True, index32=False, merge_tolerance=None,
+    def build(cls, positions, sh=None, *, compact=False, extrapolate=True, index32=False, merge_tolerance=None,
               flat_tolerance=None, progress=None):
-        """Builds a store from positions[N, 3] and sh[N, 27] (None = zeros).
+        """Builds a store from positions[N, 3] (float32, world units) and sh[N, 27] (None = zeros).
 
+        compact=True writes the compact layout (the smallest blob: no neighbour section, rebuilt when
+        the store is loaded); its answers are the fast layout's (same cells, weights within 1e-6).
         extrapolate=False builds no outer cells (queries outside the hull raise Error(OUTSIDE));
         index32 forces 32-bit indices; tolerances are fractions of the set's diagonal (None = the
         library's default); progress(fraction, stage) may return True to cancel."""
@@ -43,7 +45,8 @@ class Store(NativeHandle):
         options = _native.BuildOptions()
         check(lib.tp_build_options_init(ctypes.byref(options)))
         options.flags = (0 if extrapolate else _native.BUILD_NO_EXTRAPOLATION) | \
-                        (_native.BUILD_INDEX32 if index32 else 0)
+                        (_native.BUILD_INDEX32 if index32 else 0) | \
+                        (_native.BUILD_COMPACT if compact else 0)
         if merge_tolerance is not None:
             options.merge_tolerance = merge_tolerance
         if flat_tolerance is not None:
@@ -81,7 +84,11 @@ class Store(NativeHandle):
         return ctypes.string_at(data.value, size.value)
 
     def info(self):
-        """Counts and layout: probes, cells, inner_cells, outer_cells, merged_probes, index_bits, bytes, ..."""
+        """Counts and layout: probes, cells, inner_cells, outer_cells, merged_probes, index_bits, bytes, ...
+
+        format_version is the blob's store format (3); flags are the TP_BUILD_* bits of the blob
+        (BUILD_INDEX32 whenever it uses 32-bit indices); compact is True for the compact layout,
+        False for the fast one; bytes is the blob's size."""
         info = _native.StoreInfo()
         info.struct_size = ctypes.sizeof(info)
         check(lib.tp_store_get_info(self._live(), ctypes.byref(info)))
@@ -96,6 +103,7 @@ class Store(NativeHandle):
             "outer_cells": info.outer_cells,
             "index_bits": info.index_bits,
             "flags": info.flags,
+            "compact": bool(info.flags & _native.BUILD_COMPACT),
             "extrapolation": not (info.flags & _native.BUILD_NO_EXTRAPOLATION),
             "grid": tuple(info.grid),
             "bytes": info.bytes,
@@ -113,35 +121,66 @@ class Store(NativeHandle):
     # ---- queries
 
     @staticmethod
-    def _hints(hints, count):
+    def _hints(hints, count, chain_hints):
+        """The int32 hint buffer of a batch: the caller's, fresh -1s, or None (NULL) for chained hints."""
         if hints is None:
-            return np.full(count, -1, dtype=np.int32)
+            return None if chain_hints else np.full(count, -1, dtype=np.int32)
+        if chain_hints:
+            raise ValueError("chain_hints applies only to batches without hints")
         out = np.array(hints, dtype=np.int32).reshape(-1)
         if out.shape[0] != count:
             raise ValueError("hints has %d entries for %d points" % (out.shape[0], count))
         return out
 
-    def interpolate(self, points, hints=None):
-        """Interpolated SH at points[M, 3] -> (sh[M, 27], hints[M]); a point of shape [3] gives (sh[27], hint)."""
+    @staticmethod
+    def _batch_options(threads, chain_hints):
+        options = _native.BatchOptions()
+        check(lib.tp_batch_options_init(ctypes.byref(options)))
+        threads = int(threads)
+        if not 0 <= threads <= 0xFFFFFFFF:
+            raise ValueError("threads must be >= 0 (got %d)" % threads)
+        options.threads = threads
+        options.flags = _native.BATCH_CHAIN_HINTS if chain_hints else 0
+        return options
+
+    def interpolate(self, points, hints=None, threads=1, chain_hints=False):
+        """Interpolated SH at points[M, 3] (float32, world units) -> (sh[M, 27] float32, hints[M] int32).
+
+        A point of shape [3] gives (sh[27], hint). hints[M] are the cells of the previous queries
+        (-1 = none; None = all -1); the returned hints are the cells found. threads: how many threads
+        the library may split the batch over (0 or 1 = the calling thread). chain_hints=True (only
+        with hints=None) starts each query from the previous query's cell, for points given in a
+        spatially coherent order; the library then reports no cells and the returned hints are None.
+        Points outside a store built with extrapolate=False raise Error(OUTSIDE) naming the first."""
         data, stride, single = rows(points, 3, "points")
         count = data.shape[0]
-        cells = self._hints(hints, count)
+        cells = self._hints(hints, count, chain_hints)
+        options = self._batch_options(threads, chain_hints)
         out = np.empty((count, SH_FLOATS), dtype=np.float32)
         check(lib.tp_store_interpolate_batch(self._live(), count, data, stride, cells, 4,
-                                             out, SH_FLOATS * 4))
-        return (out[0], int(cells[0])) if single else (out, cells)
+                                             out, SH_FLOATS * 4, ctypes.byref(options)))
+        if single:
+            return out[0], (None if cells is None else int(cells[0]))
+        return out, cells
 
-    def weights(self, points, hints=None):
-        """Blended probes and weights at points[M, 3] -> (indices[M, 4] int64, weights[M, 4], hints[M])."""
+    def weights(self, points, hints=None, threads=1, chain_hints=False):
+        """Blended probes and weights at points[M, 3] -> (indices[M, 4] int64, weights[M, 4] float32, hints[M]).
+
+        indices are input probe indices (survivors of merges); unused slots weigh 0 and repeat a used
+        probe. hints, threads and chain_hints as in interpolate; a point of shape [3] gives
+        (indices[4], weights[4], hint)."""
         data, stride, single = rows(points, 3, "points")
         count = data.shape[0]
-        cells = self._hints(hints, count)
+        cells = self._hints(hints, count, chain_hints)
+        options = self._batch_options(threads, chain_hints)
         probes = np.empty((count, 4), dtype=np.uint32)
         weights = np.empty((count, 4), dtype=np.float32)
         check(lib.tp_store_weights_batch(self._live(), count, data, stride, cells, 4,
-                                         probes, 16, weights, 16))
+                                         probes, 16, weights, 16, ctypes.byref(options)))
         indices = probes.astype(np.int64)
-        return (indices[0], weights[0], int(cells[0])) if single else (indices, weights, cells)
+        if single:
+            return indices[0], weights[0], (None if cells is None else int(cells[0]))
+        return indices, weights, cells
 
     def locate(self, point, hint=-1):
         """Diagnostics of one query: cell, kind ("inner"/"outer"), steps, fallback, probes, weights, t."""
