@@ -151,7 +151,8 @@ typedef struct tp_store_info {
     uint32_t inner_cells;
     uint32_t outer_cells;
     uint32_t index_bits;         /* 16 or 32 */
-    uint32_t flags;              /* TP_BUILD_* the store was built with */
+    uint32_t flags;              /* the blob's flags, TP_BUILD_* bits: NO_EXTRAPOLATION and COMPACT as built,
+                                    INDEX32 whenever the store uses 32-bit indices */
     uint32_t grid[3];            /* cells of the cold-start grid along x, y, z */
     uint64_t bytes;              /* size of the blob */
     double origin[3];            /* local origin of the store, world units */
@@ -175,9 +176,10 @@ TP_API tp_status tp_store_interpolate(const tp_store* store, const float positio
 typedef struct tp_batch_options {
     uint32_t struct_size;
     uint32_t flags;              /* TP_BATCH_* */
-    /** Threads the batch may use (0 or 1 = the calling thread only). Large batches are split into
-        this many contiguous ranges. A job system can do the same itself: batch calls on disjoint
-        ranges may run on any threads at once. */
+    /** Threads the batch may use (0 or 1 = the calling thread only). A batch is split into up to this
+        many contiguous ranges of at least 4,096 queries each (a thread costs tens of microseconds to
+        start, so smaller batches run on the calling thread). A job system can split a batch itself:
+        batch calls on disjoint ranges may run on any threads at once. */
     uint32_t threads;
 } tp_batch_options;
 
@@ -218,7 +220,8 @@ typedef struct tp_location {
     int32_t cell;
     uint32_t cell_kind;          /* TP_CELL_* */
     uint32_t steps;              /* cells visited by the walk after the start cell */
-    uint32_t fallback;           /* 1 if the walk fell back to the exact/double-precision search */
+    uint32_t fallback;           /* 1 if the walk handed the decision to the exhaustive search (outside the hull,
+                                    where neighbouring outer cells disagree; never inside the hull) */
     uint32_t probes[4];          /* as tp_store_weights */
     float weights[4];
     float t;                     /* outer cells: the ray parameter of the point (0 on the hull) */

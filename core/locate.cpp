@@ -393,6 +393,27 @@ int outer_exit_slot(const Cells<Index>& cells, uint32_t cell, const double* w, u
     return best >= 0 ? best : back;
 }
 
+// Answers with the outer cell that holds the query best among the one the walk accepted and its outer
+// neighbours (largest smallest weight, ties to the lower index). Where two neighbouring sweeps
+// overlap, or leave a gap within the tolerance, both cells then give the same answer, so the result
+// does not depend on which one the walk reached first (the exhaustive search uses the same rule).
+template <class Index>
+void settle_outer_cell(const Cells<Index>& cells, uint32_t cell, const OuterView& o, const float q[3], Location& loc) {
+    const uint32_t d = cells.s.dimension;
+    uint32_t best = cell;
+    OuterView best_view = o;
+    double best_score = minimum(o.weights, d);
+    for (uint32_t k = 0; k < d; ++k) {
+        const uint32_t n = cells.neighbour(cell, k);
+        if (n == kNoCell || n < cells.s.inner_cell_count) continue;
+        const OuterView v = view_outer_cell(cells, n, q, -1.0);
+        if (!v.beyond || !v.holds) continue;
+        const double score = minimum(v.weights, d);
+        if (score > best_score || (score == best_score && n < best)) best = n, best_view = v, best_score = score;
+    }
+    set_outer_weights(cells, best, best_view, loc);
+}
+
 template <class Index>
 Location search(const Store::Impl& s, const float q[3], bool outer_only) {
     const Cells<Index> cells(s);
@@ -554,7 +575,7 @@ Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
                 if (o.holds) {
                     last_t = o.t;
                     if (minimum(o.weights, s.dimension) >= -kOuterWeightTolerance) {
-                        set_outer_weights(cells, cell, o, loc);
+                        settle_outer_cell(cells, cell, o, q, loc);
                         loc.steps = steps;
                         return loc;
                     }
@@ -562,7 +583,7 @@ Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
                 const int slot = outer_exit_slot(cells, cell, o.weights, previous);
                 if (slot < 0) {
                     if (!o.holds) break;
-                    set_outer_weights(cells, cell, o, loc);
+                    settle_outer_cell(cells, cell, o, q, loc);
                     loc.steps = steps;
                     return loc;
                 }

@@ -11,13 +11,17 @@ constexpr uint64_t kFnvOffsetBasis = 0xcbf29ce484222325ull;
 constexpr uint64_t kFnvPrime = 0x100000001b3ull;
 
 // FNV-1a steps over little-endian 64-bit words (8 times fewer steps than over bytes; a corruption
-// check, not a cryptographic hash); a last partial word is zero-padded.
+// check, not a cryptographic hash); a last partial word is zero-padded. The xor-shift after each
+// multiply carries the top bit down (a multiply alone moves a flipped bit 63 to bit 63 only, so two
+// such flips would cancel); every step stays a bijection of the state, so any one changed word
+// always changes the result.
 uint64_t fnv1a_words(uint64_t hash, const uint8_t* data, size_t size) {
     for (size_t i = 0; i < size; i += 8) {
         uint64_t word = 0;
         std::memcpy(&word, data + i, std::min<size_t>(8, size - i));
         hash ^= word;
         hash *= kFnvPrime;
+        hash ^= hash >> 29;
     }
     return hash;
 }

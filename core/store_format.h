@@ -5,8 +5,8 @@
 //
 // Sections appear in table order, each at a 16-byte-aligned offset, with zero padding between
 // them and nothing after the last. The checksum is FNV-1a 64 over the blob's little-endian 64-bit
-// words (seeded with the size, the last word zero-padded) with the checksum field read as zero, so
-// any changed byte (header included) is caught.
+// words, each step followed by hash ^= hash >> 29 (seeded with offset basis ^ size, the last word
+// zero-padded), with the checksum field read as zero, so any changed byte (header included) is caught.
 //
 // Geometry (all positions are local: world minus header.origin, float32). Every decision of which
 // cell holds a point is an orientation predicate on these float32 positions, evaluated exactly

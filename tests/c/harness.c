@@ -686,7 +686,8 @@ static void test_store_info_and_struct_size(void) {
 }
 
 /* The blob checksum of store_format.h, to forge a consistent blob: FNV-1a 64 over little-endian 64-bit
-   words (seeded with the size, the last word zero-padded), the checksum field read as zero. */
+   words, each step followed by hash ^= hash >> 29 (seeded with the size, the last word zero-padded),
+   the checksum field read as zero. */
 #define CHECKSUM_OFFSET 104 /* format 3: after magic, 9 uint32 (axis included), grid, origin, bounds */
 static void repair_checksum(unsigned char* data, size_t size) {
     uint64_t hash = 14695981039346656037ull ^ (uint64_t)size;
@@ -700,6 +701,7 @@ static void repair_checksum(unsigned char* data, size_t size) {
         }
         hash ^= word;
         hash *= 1099511628211ull;
+        hash ^= hash >> 29;
     }
     for (i = 0; i < 8; ++i) data[CHECKSUM_OFFSET + i] = (unsigned char)(hash >> (8 * i));
 }
