@@ -494,6 +494,11 @@ inline __attribute__((always_inline)) bool walk_clear_tetrahedra(const Cells<Ind
                                                                  Location& loc) {
     const uint32_t inner = cells.s.inner_cell_count;
     uint32_t c = *cell;
+    if (c < inner) {
+        // The start cell is usually the answer: ask for its probes' SH while the orientations compute.
+        const CellRecord<Index>& r = cells.records[c];
+        for (int k = 0; k < 4; ++k) __builtin_prefetch(cells.s.sh + size_t(r.vertices[k]) * cells.s.sh_halves);
+    }
     while (c < inner && *steps <= step_cap) {
         const CellRecord<Index>& r = cells.records[c];
         const Orientations o = tetrahedron_orientations(cells.position(r.vertices[0]), cells.position(r.vertices[1]),
@@ -602,10 +607,6 @@ Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
 }
 
 }  // namespace
-
-void local_position(const Store::Impl& s, const float world[3], float local[3]) {
-    for (int k = 0; k < 3; ++k) local[k] = float(double(world[k]) - s.origin[k]);
-}
 
 Location locate_local(const Store::Impl& store, const float local[3], int32_t hint) {
     return store.index32 ? walk<uint32_t>(store, local, hint) : walk<uint16_t>(store, local, hint);

@@ -13,7 +13,9 @@ constexpr double kOuterWeightTolerance = 1e-5;
 
 // The query's position in the store's frame: world minus origin, rounded to float exactly as the
 // stored positions were.
-void local_position(const Store::Impl& store, const float world[3], float local[3]);
+inline void local_position(const Store::Impl& store, const float world[3], float local[3]) {
+    for (int k = 0; k < 3; ++k) local[k] = float(double(world[k]) - store.origin[k]);
+}
 
 // Finds the cell holding a local position, starting from hint (-1 or out of range: the grid).
 Location locate_local(const Store::Impl& store, const float local[3], int32_t hint);
