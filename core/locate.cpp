@@ -12,6 +12,7 @@
 #include "core/orientation.h"
 #include "core/plane_projection.h"
 #include "core/polynomial_roots.h"
+#include "core/tetrahedron_orientations.h"
 
 #include <cmath>
 #include <limits>
@@ -22,9 +23,8 @@ namespace {
 
 constexpr uint32_t kNoCell = 0xFFFFFFFFu;
 constexpr uint32_t kRecentOuterCells = 8;
-// Bounds of the permanents below: 6 (resp. 2) products of the largest |differences|, with room for
-// the rounding of that bound itself.
-constexpr double kOrient3dBoundScale = 6.000001 * kOrient3dErrorFactor;
+// Bound of the 2D permanent below: 2 products of the largest |differences|, with room for the
+// rounding of that bound itself (the 3D one is in tetrahedron_orientations.h).
 constexpr double kOrient2dBoundScale = 2.000001 * kOrient2dErrorFactor;
 
 // max without std::fmax's NaN rules (a libm call); the inputs here are never NaN.
@@ -86,31 +86,15 @@ inline __attribute__((always_inline)) InnerView view_inner_cell(const Cells<Inde
     const float* P[4];
     for (uint32_t k = 0; k <= d; ++k) P[k] = cells.position(cells.vertex(cell, k));
     if (d == 3) {
-        // D[k] = +-det of the differences a_i = P_i - q of the three vertices other than k, from the
-        // six 2x2 minors of their x and y.
-        double a[4][3];
-        double mx = 0, my = 0, mz = 0;
-        for (int i = 0; i < 4; ++i) {
-            a[i][0] = double(P[i][0]) - double(q[0]);
-            a[i][1] = double(P[i][1]) - double(q[1]);
-            a[i][2] = double(P[i][2]) - double(q[2]);
-            mx = larger(mx, std::fabs(a[i][0]));
-            my = larger(my, std::fabs(a[i][1]));
-            mz = larger(mz, std::fabs(a[i][2]));
-        }
-        auto minor = [&](int i, int j) { return a[i][0] * a[j][1] - a[j][0] * a[i][1]; };
-        const double m01 = minor(0, 1), m02 = minor(0, 2), m03 = minor(0, 3);
-        const double m12 = minor(1, 2), m13 = minor(1, 3), m23 = minor(2, 3);
-        v.D[0] = a[1][2] * m23 - a[2][2] * m13 + a[3][2] * m12;
-        v.D[1] = -(a[0][2] * m23 - a[2][2] * m03 + a[3][2] * m02);
-        v.D[2] = a[0][2] * m13 - a[1][2] * m03 + a[3][2] * m01;
-        v.D[3] = -(a[0][2] * m12 - a[1][2] * m02 + a[2][2] * m01);
-        const double bound = kOrient3dBoundScale * (mx * my * mz);
+        const Orientations o = ScalarOrientations::of(P, q);
+        const double bound = o.bound;
+        for (int k = 0; k < 4; ++k) v.D[k] = o.D[k];
         if ((v.D[0] > bound) & (v.D[1] > bound) & (v.D[2] > bound) & (v.D[3] > bound)) {  // the common case
             v.sign[0] = v.sign[1] = v.sign[2] = v.sign[3] = 1;
             v.verdict = InnerView::holds;
             return v;
         }
+        bool uncertain = false;
         for (int k = 0; k < 4; ++k) {
             if (v.D[k] > bound) {
                 v.sign[k] = 1;
@@ -120,6 +104,16 @@ inline __attribute__((always_inline)) InnerView view_inner_cell(const Cells<Inde
                 const float* w[4] = {P[0], P[1], P[2], P[3]};
                 w[k] = q;
                 v.sign[k] = orient3d_exact(w[0], w[1], w[2], w[3]);
+                uncertain = true;
+            }
+        }
+        // A held point the filter could not decide (on or near a facet, or in a sliver): its weights
+        // from exact orientations, so that they keep double precision however thin the cell.
+        if (uncertain && v.sign[0] >= 0 && v.sign[1] >= 0 && v.sign[2] >= 0 && v.sign[3] >= 0) {
+            for (int k = 0; k < 4; ++k) {
+                const float* w[4] = {P[0], P[1], P[2], P[3]};
+                w[k] = q;
+                v.D[k] = v.sign[k] > 0 ? orient3d_exact_value(w[0], w[1], w[2], w[3]) : 0.0;
             }
         }
     } else if (d == 2) {
@@ -139,6 +133,7 @@ inline __attribute__((always_inline)) InnerView view_inner_cell(const Cells<Inde
         v.D[1] = cross(2, 0);
         v.D[2] = cross(0, 1);
         const double bound = kOrient2dBoundScale * (mu * mv);
+        bool uncertain = false;
         for (int k = 0; k < 3; ++k) {
             if (v.D[k] > bound) {
                 v.sign[k] = 1;
@@ -148,6 +143,14 @@ inline __attribute__((always_inline)) InnerView view_inner_cell(const Cells<Inde
                 const float* w[3] = {uv[0], uv[1], uv[2]};
                 w[k] = quv;
                 v.sign[k] = orient2d_exact(w[0], w[1], w[2]);
+                uncertain = true;
+            }
+        }
+        if (uncertain && v.sign[0] >= 0 && v.sign[1] >= 0 && v.sign[2] >= 0) {
+            for (int k = 0; k < 3; ++k) {
+                const float* w[3] = {uv[0], uv[1], uv[2]};
+                w[k] = quv;
+                v.D[k] = v.sign[k] > 0 ? orient2d_exact_value(w[0], w[1], w[2]) : 0.0;
             }
         }
     } else if (d == 1) {
@@ -452,77 +455,29 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
     return loc;
 }
 
-// The four orientations of a tetrahedron with the query, D[k] = the cell with vertex k replaced by
-// the query, in double from the differences a_i = P_i - q via the six 2x2 minors of their x and y,
-// and the filter's bound: a D beyond +-bound has the sign of its exact value (Shewchuk's bound on a
-// permanent no larger than 6 * max|x| * max|y| * max|z|).
-struct Orientations {
-    double D[4];
-    double bound;
-};
+#define TP_WALK_CLEAR_NAME walk_clear_portable
+#define TP_WALK_CLEAR_KERNEL ScalarOrientations
+#include "core/walk_clear.inl"
+#undef TP_WALK_CLEAR_NAME
+#undef TP_WALK_CLEAR_KERNEL
+#ifdef TETPROBE_X86_64
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define TP_WALK_CLEAR_NAME walk_clear_avx2
+#define TP_WALK_CLEAR_KERNEL Avx2Orientations
+#include "core/walk_clear.inl"
+#undef TP_WALK_CLEAR_NAME
+#undef TP_WALK_CLEAR_KERNEL
+#pragma GCC pop_options
+#endif
 
-inline __attribute__((always_inline)) Orientations tetrahedron_orientations(const float* P0, const float* P1,
-                                                                             const float* P2, const float* P3,
-                                                                             const float q[3]) {
-    const double qx = q[0], qy = q[1], qz = q[2];
-    const double x0 = P0[0] - qx, y0 = P0[1] - qy, z0 = P0[2] - qz;
-    const double x1 = P1[0] - qx, y1 = P1[1] - qy, z1 = P1[2] - qz;
-    const double x2 = P2[0] - qx, y2 = P2[1] - qy, z2 = P2[2] - qz;
-    const double x3 = P3[0] - qx, y3 = P3[1] - qy, z3 = P3[2] - qz;
-    const double m01 = x0 * y1 - x1 * y0, m02 = x0 * y2 - x2 * y0, m03 = x0 * y3 - x3 * y0;
-    const double m12 = x1 * y2 - x2 * y1, m13 = x1 * y3 - x3 * y1, m23 = x2 * y3 - x3 * y2;
-    Orientations o;
-    o.D[0] = z1 * m23 - z2 * m13 + z3 * m12;
-    o.D[1] = z2 * m03 - z0 * m23 - z3 * m02;
-    o.D[2] = z0 * m13 - z1 * m03 + z3 * m01;
-    o.D[3] = z1 * m02 - z0 * m12 - z2 * m01;
-    const double mx = larger(larger(std::fabs(x0), std::fabs(x1)), larger(std::fabs(x2), std::fabs(x3)));
-    const double my = larger(larger(std::fabs(y0), std::fabs(y1)), larger(std::fabs(y2), std::fabs(y3)));
-    const double mz = larger(larger(std::fabs(z0), std::fabs(z1)), larger(std::fabs(z2), std::fabs(z3)));
-    o.bound = kOrient3dBoundScale * (mx * my * mz);
-    return o;
-}
-
-// The common case, kept lean: the walk over tetrahedra while the filter decides. A cell whose four
-// orientations are all certainly positive holds the query (weights D / sum D); a cell with a
-// certainly negative one is left across the most negative (any facet the query is strictly beyond
-// is a valid visibility step). Returns true with loc filled when answered; false with *cell where
-// the general walk must take over (an uncertain sign, the hull, an outer cell, or the step cap).
 template <class Index>
-inline __attribute__((always_inline)) bool walk_clear_tetrahedra(const Cells<Index>& cells, uint32_t* cell,
-                                                                 const float q[3], uint32_t* steps, uint32_t step_cap,
-                                                                 Location& loc) {
-    const uint32_t inner = cells.s.inner_cell_count;
-    uint32_t c = *cell;
-    if (c < inner) {
-        // The start cell is usually the answer: ask for its probes' SH while the orientations compute.
-        const CellRecord<Index>& r = cells.records[c];
-        for (int k = 0; k < 4; ++k) __builtin_prefetch(cells.s.sh + size_t(r.vertices[k]) * cells.s.sh_halves);
-    }
-    while (c < inner && *steps <= step_cap) {
-        const CellRecord<Index>& r = cells.records[c];
-        const Orientations o = tetrahedron_orientations(cells.position(r.vertices[0]), cells.position(r.vertices[1]),
-                                                        cells.position(r.vertices[2]), cells.position(r.vertices[3]), q);
-        const double* D = o.D;
-        if ((D[0] > o.bound) & (D[1] > o.bound) & (D[2] > o.bound) & (D[3] > o.bound)) {
-            const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
-            loc.cell = int32_t(c);
-            loc.steps = *steps;
-            for (int k = 0; k < 4; ++k) {
-                loc.probes[k] = r.vertices[k];
-                loc.weights[k] = float(D[k] * scale);
-            }
-            return true;
-        }
-        int exit = 0;
-        for (int k = 1; k < 4; ++k) exit = D[k] < D[exit] ? k : exit;
-        const uint32_t next = r.neighbours[exit];
-        if (!(D[exit] < -o.bound) || next == none_index<Index>()) break;
-        c = next;
-        ++*steps;
-    }
-    *cell = c;
-    return false;
+bool walk_clear(const Cells<Index>& cells, uint32_t* cell, const float q[3], uint32_t* steps, uint32_t step_cap,
+                Location& loc) {
+#ifdef TETPROBE_X86_64
+    if (cells.s.avx2) return walk_clear_avx2(cells, cell, q, steps, step_cap, loc);
+#endif
+    return walk_clear_portable(cells, cell, q, steps, step_cap, loc);
 }
 
 template <class Index>
@@ -533,7 +488,7 @@ Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
     const uint32_t step_cap = s.cell_count + 64;
     uint32_t steps = 0;
     Location loc;
-    if (s.dimension == 3 && walk_clear_tetrahedra(cells, &cell, q, &steps, step_cap, loc)) return loc;
+    if (s.dimension == 3 && walk_clear(cells, &cell, q, &steps, step_cap, loc)) return loc;
     uint32_t previous = kNoCell;
     double last_t = -1.0;       // t of the last outer cell that held the query's moved facet
     bool beyond_hull = false;   // an outer cell found the query strictly beyond its hull facet

@@ -93,11 +93,9 @@ constexpr TermTable make_terms() {
 
 constexpr TermTable kTerms = make_terms();
 
-}  // namespace
-
-int orient3d_exact(const float a[3], const float b[3], const float c[3], const float d[3]) {
+// The exact determinant as a nonoverlapping expansion e[0..n) in increasing magnitude.
+int orient3d_expansion(const float a[3], const float b[3], const float c[3], const float d[3], double e[49]) {
     const float* points[4] = {a, b, c, d};
-    double e[49];
     int n = 0;
     for (const Term& t : kTerms.terms) {
         double hi, lo;
@@ -105,19 +103,48 @@ int orient3d_exact(const float a[3], const float b[3], const float c[3], const f
         n = grow_expansion(e, n, t.sign * hi);
         n = grow_expansion(e, n, t.sign * lo);
     }
-    return expansion_sign(e, n);
+    return n;
 }
 
-int orient2d_exact(const float a[2], const float b[2], const float c[2]) {
+int orient2d_expansion(const float a[2], const float b[2], const float c[2], double e[7]) {
     // det[b - a, c - a] = det of the rows (1, x, y) of a, b, c; each product of two floats is exact.
     const double terms[6] = {
         double(b[0]) * c[1], -(double(b[1]) * c[0]), -(double(a[0]) * c[1]),
         double(a[1]) * c[0], double(a[0]) * b[1],    -(double(a[1]) * b[0]),
     };
-    double e[7];
     int n = 0;
     for (double t : terms) n = grow_expansion(e, n, t);
-    return expansion_sign(e, n);
+    return n;
+}
+
+// An expansion's value rounded to double: its components summed from the smallest up (they do not
+// overlap, so the result is within an ulp or so of the exact value, and has its sign).
+double expansion_value(const double* e, int n) {
+    double sum = 0;
+    for (int i = 0; i < n; ++i) sum += e[i];
+    return sum;
+}
+
+}  // namespace
+
+int orient3d_exact(const float a[3], const float b[3], const float c[3], const float d[3]) {
+    double e[49];
+    return expansion_sign(e, orient3d_expansion(a, b, c, d, e));
+}
+
+double orient3d_exact_value(const float a[3], const float b[3], const float c[3], const float d[3]) {
+    double e[49];
+    return expansion_value(e, orient3d_expansion(a, b, c, d, e));
+}
+
+int orient2d_exact(const float a[2], const float b[2], const float c[2]) {
+    double e[7];
+    return expansion_sign(e, orient2d_expansion(a, b, c, e));
+}
+
+double orient2d_exact_value(const float a[2], const float b[2], const float c[2]) {
+    double e[7];
+    return expansion_value(e, orient2d_expansion(a, b, c, e));
 }
 
 }  // namespace tetprobe

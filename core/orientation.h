@@ -22,6 +22,12 @@ int orient3d_exact(const float a[3], const float b[3], const float c[3], const f
 // clockwise.
 int orient2d_exact(const float a[2], const float b[2], const float c[2]);
 
+// The same determinants' values, from the exact expansion rounded to double (within an ulp or so,
+// and with the exact sign): what weights are computed from where the filter could not decide, so
+// that a sliver's barycentrics keep double precision too.
+double orient3d_exact_value(const float a[3], const float b[3], const float c[3], const float d[3]);
+double orient2d_exact_value(const float a[2], const float b[2], const float c[2]);
+
 // The filter alone: true, with the sign in *sign, when the double evaluation decides it; false when
 // only the exact evaluation can. Exposed so tests and benchmarks can see how often it falls back.
 // The evaluation order follows Shewchuk's orient3d (each cofactor, then times the third difference),

@@ -7,9 +7,11 @@
 #include "core/locate.h"
 #include "core/store_impl.h"
 #include "core/store_validation.h"
+#include "core/tetrahedron_orientations.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 namespace tetprobe {
@@ -66,6 +68,7 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     s.cell_count = h.cell_count;
     s.inner_cell_count = h.inner_cell_count;
     s.sh_halves = (h.flags & kFlagCompact) ? kShHalvesCompact : kShHalvesFast;
+    s.avx2 = cpu_has_avx2() && !getenv("TP_NO_AVX2");
     for (int k = 0; k < 3; ++k) s.origin[k] = h.origin[k];
     auto section = [&](Section id) { return base + table[id].offset; };
     s.positions = reinterpret_cast<const float*>(section(kSectionPositions));

@@ -36,6 +36,7 @@ struct Store::Impl {
     uint32_t cell_count = 0;
     uint32_t inner_cell_count = 0;
     uint32_t sh_halves = kShHalvesFast;  // halves per probe in the SH section
+    bool avx2 = false;                   // the walk's AVX2 kernel runs on this CPU
     double origin[3] = {0, 0, 0};
 
     const float* positions = nullptr;        // 3 per probe
