@@ -57,14 +57,14 @@ StoreData build(const std::vector<float>& positions, uint32_t flags = 0, const s
 }
 
 // Status and message of a build that must fail.
-std::pair<tp_status, std::string> build_error(const std::vector<float>& positions, const BuildSettings& settings = {},
+std::pair<tetprobe::Status, std::string> build_error(const std::vector<float>& positions, const BuildSettings& settings = {},
                                               const std::vector<float>* sh = nullptr) {
     try {
         tetprobe::build_store_data(positions.data(), 12, sh ? sh->data() : nullptr, 108, positions.size() / 3, settings);
     } catch (const tetprobe::Error& e) {
         return {e.status(), e.what()};
     }
-    return {TP_OK, ""};
+    return {tetprobe::Status::ok, ""};
 }
 
 Vec position(const StoreData& d, uint32_t probe) {
@@ -647,40 +647,40 @@ TEST_CASE("builder: bad input is refused with a status naming the probe", "[buil
         return build_error(q);
     };
     auto e = with(3 * 4 + 1, nan);
-    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.first == tetprobe::Status::invalid_argument);
     REQUIRE(e.second.find("probe 4") != std::string::npos);
     REQUIRE(e.second.find(" y ") != std::string::npos);
     e = with(3 * 9 + 2, -inf);
-    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.first == tetprobe::Status::invalid_argument);
     REQUIRE(e.second.find("probe 9") != std::string::npos);
     REQUIRE(e.second.find(" z ") != std::string::npos);
     e = with(0, 3e31f);
-    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.first == tetprobe::Status::invalid_argument);
     REQUIRE(e.second.find("probe 0") != std::string::npos);
 
     std::vector<float> sh(27 * 10, 0.5f);
     sh[27 * 6 + 13] = nan;
     e = build_error(p, {}, &sh);
-    REQUIRE(e.first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(e.first == tetprobe::Status::invalid_argument);
     REQUIRE(e.second.find("probe 6") != std::string::npos);
 
-    REQUIRE(build_error({}).first == TP_ERROR_DEGENERATE);
+    REQUIRE(build_error({}).first == tetprobe::Status::degenerate);
     // Distinct probes closer than 1e-9 units: refused; identical probes (one position) are fine.
     const auto tiny = build_error({1e-20f, 0, 0, 0, 3e-21f, 0, 0, 0, 1e-20f, 2e-21f, 2e-21f, 2e-21f});
-    REQUIRE(tiny.first == TP_ERROR_DEGENERATE);
+    REQUIRE(tiny.first == tetprobe::Status::degenerate);
     REQUIRE(tiny.second.find("span") != std::string::npos);
-    REQUIRE(build_error({0, 0, 0, 2e-9f, 0, 0}).first == TP_OK);
-    REQUIRE(build_error({5, 5, 5, 5, 5, 5}).first == TP_OK);
+    REQUIRE(build_error({0, 0, 0, 2e-9f, 0, 0}).first == tetprobe::Status::ok);
+    REQUIRE(build_error({5, 5, 5, 5, 5, 5}).first == tetprobe::Status::ok);
 
     BuildSettings bad;
     bad.merge_tolerance = -1;
-    REQUIRE(build_error(p, bad).first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(build_error(p, bad).first == tetprobe::Status::invalid_argument);
     bad = BuildSettings();
     bad.flat_tolerance = std::nan("");
-    REQUIRE(build_error(p, bad).first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(build_error(p, bad).first == tetprobe::Status::invalid_argument);
     bad = BuildSettings();
     bad.flags = 0x80;
-    REQUIRE(build_error(p, bad).first == TP_ERROR_INVALID_ARGUMENT);
+    REQUIRE(build_error(p, bad).first == tetprobe::Status::invalid_argument);
 }
 
 namespace {
@@ -717,7 +717,7 @@ TEST_CASE("builder: progress reaches 1 in order, and a non-zero return cancels",
         cancel.cancel_at = at;
         settings.progress_user = &cancel;
         auto e = build_error(p, settings);
-        REQUIRE(e.first == TP_ERROR_CANCELLED);
+        REQUIRE(e.first == tetprobe::Status::cancelled);
         REQUIRE(e.second == "build cancelled");
         REQUIRE(cancel.fractions.size() == size_t(at) + 1);
     }
@@ -755,7 +755,7 @@ TEST_CASE("builder: the data writes a blob that loads and answers at the probes"
         REQUIRE(((store->header().flags & tetprobe::kFlagIndex32) != 0) == ((flags & TP_BUILD_INDEX32) != 0));
         for (uint32_t i = 0; i < 30; ++i) {
             const tetprobe::Location loc = store->locate(&set.positions[3 * i], -1);
-            REQUIRE(loc.status == TP_OK);
+            REQUIRE(loc.status == tetprobe::Status::ok);
             for (int k = 0; k < 4; ++k) {
                 if (loc.probes[k] == d.input_remap[i]) REQUIRE(loc.weights[k] == Approx(1).margin(1e-5));
             }
@@ -820,7 +820,7 @@ TEST_CASE("builder: a set that crashes TetGen 1.5.0 is contained and retried", "
     const auto store = tetprobe::Store::load(blob.data(), blob.size());
     for (uint32_t i = 0; i < 7; ++i) {
         const tetprobe::Location loc = store->locate(&positions[3 * i], -1);
-        REQUIRE(loc.status == TP_OK);
+        REQUIRE(loc.status == tetprobe::Status::ok);
         float own = 0;
         for (int k = 0; k < 4; ++k)
             if (loc.probes[k] == d.input_remap[i]) own += loc.weights[k];
@@ -850,7 +850,7 @@ void require_exact_at_inputs(const StoreData& d, const std::vector<float>& posit
     int32_t hint = -1;
     for (size_t i = 0; i < positions.size() / 3; ++i) {
         const tetprobe::Location loc = store->locate(&positions[3 * i], hint);
-        REQUIRE(loc.status == TP_OK);
+        REQUIRE(loc.status == tetprobe::Status::ok);
         hint = loc.cell;
         float own = 0;
         for (int k = 0; k < 4; ++k)
