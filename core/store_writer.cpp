@@ -19,18 +19,20 @@ namespace {
 
 constexpr float kHalfMax = 65504.0f;
 
-void require(bool condition, const std::string& message) {
-    if (!condition) throw Error(Status::invalid_argument, "store data: " + message);
+// The message is built only when the condition fails (the per-value checks below run millions of times).
+template <class Message>
+void require(bool condition, Message&& message) {
+    if (!condition) throw Error(Status::invalid_argument, "store data: " + std::string(message()));
 }
 
 void require_size(size_t actual, uint64_t expected, const char* what) {
-    require(actual == expected, std::string(what) + " has " + std::to_string(actual) + " values, expected " +
-                                    std::to_string(expected));
+    require(actual == expected, [&] { return std::string(what) + " has " + std::to_string(actual) + " values, expected " +
+                                    std::to_string(expected); });
 }
 
 void require_finite(const std::vector<float>& values, const char* what) {
     for (size_t i = 0; i < values.size(); ++i)
-        require(std::isfinite(values[i]), std::string(what) + "[" + std::to_string(i) + "] is not finite");
+        require(std::isfinite(values[i]), [&] { return std::string(what) + "[" + std::to_string(i) + "] is not finite"; });
 }
 
 // Copies indices at the blob's width: 32-bit as is, 16-bit with the reserved values remapped.
@@ -47,8 +49,8 @@ void write_indices(uint8_t* out, const std::vector<uint32_t>& indices, bool inde
         else if (value == kOuter32)
             narrow = uint16_t(kOuter16);
         else {
-            require(value <= kMaxIndex16, std::string(what) + "[" + std::to_string(i) + "] = " +
-                                              std::to_string(value) + " does not fit a 16-bit index");
+            require(value <= kMaxIndex16, [&] { return std::string(what) + "[" + std::to_string(i) + "] = " +
+                                              std::to_string(value) + " does not fit a 16-bit index"; });
             narrow = uint16_t(value);
         }
         std::memcpy(out + i * sizeof narrow, &narrow, sizeof narrow);
@@ -59,7 +61,7 @@ void write_indices(uint8_t* out, const std::vector<uint32_t>& indices, bool inde
 void write_sh(uint8_t* out, const std::vector<float>& sh, uint32_t halves) {
     for (size_t i = 0; i < sh.size(); ++i) {
         float value = sh[i];
-        require(std::isfinite(value), "sh[" + std::to_string(i) + "] is not finite");
+        require(std::isfinite(value), [&] { return "sh[" + std::to_string(i) + "] is not finite"; });
         value = value < -kHalfMax ? -kHalfMax : (value > kHalfMax ? kHalfMax : value);
         const uint16_t half = float_to_half(value);
         std::memcpy(out + ((i / 27) * halves + i % 27) * sizeof half, &half, sizeof half);
@@ -71,13 +73,12 @@ void write_sh(uint8_t* out, const std::vector<float>& sh, uint32_t halves) {
 std::vector<uint8_t> write_store_blob(const StoreData& data) {
     const uint64_t probes = data.probe_source.size();
     const uint64_t cells = data.cell_vertices.size() / 4;
-    require(probes >= 1, "no probes");
-    require(probes < kOuter32 && cells < kOuter32 && data.input_probe_count < kOuter32,
-            "counts do not fit 32-bit indices");
-    require(data.cell_vertices.size() % 4 == 0, "cell_vertices is not 4 per cell");
-    require(data.dimension <= 3, "dimension " + std::to_string(data.dimension) + " is above 3");
-    require(data.axis <= 2, "axis " + std::to_string(data.axis) + " is above 2");
-    require(data.inner_cell_count <= cells, "inner_cell_count exceeds the cell count");
+    require(probes >= 1, [&] { return "no probes"; });
+    require(probes < kOuter32 && cells < kOuter32 && data.input_probe_count < kOuter32, [&] { return "counts do not fit 32-bit indices"; });
+    require(data.cell_vertices.size() % 4 == 0, [&] { return "cell_vertices is not 4 per cell"; });
+    require(data.dimension <= 3, [&] { return "dimension " + std::to_string(data.dimension) + " is above 3"; });
+    require(data.axis <= 2, [&] { return "axis " + std::to_string(data.axis) + " is above 2"; });
+    require(data.inner_cell_count <= cells, [&] { return "inner_cell_count exceeds the cell count"; });
     require_size(data.positions.size(), probes * 3, "positions");
     require_size(data.normals.size(), probes * 3, "normals");
     require_size(data.sh.size(), probes * 27, "sh");
@@ -88,8 +89,7 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     require_finite(data.normals, "normals");
     for (int k = 0; k < 3; ++k)
         require(std::isfinite(data.origin[k]) && std::isfinite(data.bounds_min[k]) &&
-                    std::isfinite(data.bounds_max[k]),
-                "origin or bounds not finite");
+                    std::isfinite(data.bounds_max[k]), [&] { return "origin or bounds not finite"; });
 
     const bool index32 =
         (data.flags & kFlagIndex32) || probes > kMaxIndex16 || cells > kMaxIndex16;
@@ -116,7 +116,7 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     header.section_count = kSectionCount;
 
     uint64_t sizes[kSectionCount];
-    require(expected_section_sizes(header, sizes), "section sizes overflow");
+    require(expected_section_sizes(header, sizes), [&] { return "section sizes overflow"; });
     SectionEntry table[kSectionCount];
     uint64_t end = kHeaderSize;
     for (uint32_t s = 0; s < kSectionCount; ++s) {
