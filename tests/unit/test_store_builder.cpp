@@ -1,11 +1,13 @@
 // The store builder (bake/store_builder.h): structure of the StoreData it produces for every kind of
-// probe set, merging, dimension handling, bad input, progress and cancellation, and tp_store_build.
+// probe set (exact orientation of every cell, outward winding of the outer cells, adjacency, no
+// peeling: the inner cells tile the convex hull), independence of the input order, merging,
+// dimension handling, bad input, progress and cancellation, and the blob it writes.
+//
+// The checks here read only positions and cells, and decide every sign with TetGen's exact
+// predicates (not the builder's own filtered ones), so they referee the builder independently.
 #include "probe_families.h"
-#include "reference_interpolator.h"
-#include "store_structure.h"
 
 #include "bake/delaunay.h"
-#include "bake/hull_slivers.h"
 #include "bake/probe_merge.h"
 #include "bake/set_dimension.h"
 #include "bake/start_grid.h"
@@ -13,18 +15,37 @@
 #include "capi/tetprobe.h"
 #include "core/error.h"
 #include "core/store.h"
+#include "core/store_data.h"
+#include "core/store_format.h"
 
 #include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
+// TetGen 1.5's exact predicates (global functions in libtet; REAL is double). Shewchuk's convention:
+// orient3dexact(a, b, c, d) = det[a-d, b-d, c-d] = -det[b-a, c-a, d-a] (minus the store's orient3d);
+// orient2dexact(a, b, c) = det[b-a, c-a] (the store's orient2d).
+void exactinit(int verbose, int noexact, int nofilter, double maxx, double maxy, double maxz);
+double orient3dexact(double* pa, double* pb, double* pc, double* pd);
+double orient2dexact(double* pa, double* pb, double* pc);
+
 using tetprobe::BuildSettings;
+using tetprobe::kNone32;
+using tetprobe::kOuter32;
 using tetprobe::StoreData;
+using Vec = Eigen::Vector3d;
 
 namespace {
 
@@ -46,26 +67,307 @@ std::pair<tp_status, std::string> build_error(const std::vector<float>& position
     return {TP_OK, ""};
 }
 
+Vec position(const StoreData& d, uint32_t probe) {
+    return Vec(d.positions[3 * size_t(probe)], d.positions[3 * size_t(probe) + 1], d.positions[3 * size_t(probe) + 2]);
+}
+Vec normal(const StoreData& d, uint32_t probe) {
+    return Vec(d.normals[3 * size_t(probe)], d.normals[3 * size_t(probe) + 1], d.normals[3 * size_t(probe) + 2]);
+}
+uint32_t vertex(const StoreData& d, uint32_t cell, uint32_t slot) { return d.cell_vertices[4 * size_t(cell) + slot]; }
+uint32_t neighbour(const StoreData& d, uint32_t cell, uint32_t slot) {
+    return d.cell_neighbours[4 * size_t(cell) + slot];
+}
+
+// The store's orientation conventions (store_format.h), exactly, on the stored floats.
+int orient3d(Vec a, Vec b, Vec c, Vec x) {
+    static const bool initialised = (exactinit(0, 0, 0, 1.0, 1.0, 1.0), true);
+    (void)initialised;
+    const double value = -orient3dexact(a.data(), b.data(), c.data(), x.data());
+    return (value > 0) - (value < 0);
+}
+Eigen::Vector2d plane_uv(const StoreData& d, const Vec& p) {
+    const int u = d.axis == 0 ? 1 : 0, v = d.axis == 2 ? 1 : 2;
+    return Eigen::Vector2d(p[u], p[v]);
+}
+int orient2d(const StoreData& d, const Vec& a, const Vec& b, const Vec& x) {
+    Eigen::Vector2d p = plane_uv(d, a), q = plane_uv(d, b), r = plane_uv(d, x);
+    (void)orient3d(Vec::Zero(), Vec::UnitX(), Vec::UnitY(), Vec::UnitZ());  // exactinit
+    const double value = orient2dexact(p.data(), q.data(), r.data());
+    return (value > 0) - (value < 0);
+}
+// Orientation of inner cell c (3D and 2D exactly; 1D along the axis), with p in place of slot `at`.
+int cell_orientation(const StoreData& d, uint32_t c, const Vec* p = nullptr, uint32_t at = 4) {
+    Vec v[4];
+    for (uint32_t k = 0; k <= d.dimension; ++k) v[k] = (k == at && p) ? *p : position(d, vertex(d, c, k));
+    if (d.dimension == 3) return orient3d(v[0], v[1], v[2], v[3]);
+    if (d.dimension == 2) return orient2d(d, v[0], v[1], v[2]);
+    if (d.dimension == 1) return (v[1][d.axis] > v[0][d.axis]) - (v[1][d.axis] < v[0][d.axis]);
+    return 1;
+}
+// Signed measure (volume, area in (u, v), length along the axis) of inner cell c, in double.
+double cell_measure(const StoreData& d, uint32_t c) {
+    Vec v[4];
+    for (uint32_t k = 0; k <= d.dimension; ++k) v[k] = position(d, vertex(d, c, k));
+    if (d.dimension == 3) return (v[1] - v[0]).cross(v[2] - v[0]).dot(v[3] - v[0]) / 6;
+    if (d.dimension == 2) {
+        const Eigen::Vector2d e1 = plane_uv(d, v[1]) - plane_uv(d, v[0]), e2 = plane_uv(d, v[2]) - plane_uv(d, v[0]);
+        return (e1.x() * e2.y() - e1.y() * e2.x()) / 2;
+    }
+    return d.dimension == 1 ? v[1][d.axis] - v[0][d.axis] : 0;
+}
+
+// Counts failed conditions over a loop and keeps the first one's text, so that checking every cell
+// costs one Catch assertion, not millions.
+struct Failures {
+    std::string first;
+    size_t count = 0;
+    void report(const char* what) const {
+        INFO(what << ": " << count << " failures, the first: " << first);
+        REQUIRE(count == 0);
+    }
+};
+#define BUILDER_CHECK(failures, condition, context)                          \
+    do {                                                                     \
+        if (!(condition) && (failures).count++ == 0) {                       \
+            std::ostringstream what_;                                        \
+            what_ << #condition << " (" << context << ")";                   \
+            (failures).first = what_.str();                                  \
+        }                                                                    \
+    } while (0)
+
+std::multiset<uint32_t> facet_without(const StoreData& d, uint32_t cell, uint32_t slot) {
+    std::multiset<uint32_t> facet;
+    for (uint32_t k = 0; k <= d.dimension; ++k)
+        if (k != slot && vertex(d, cell, k) != kOuter32) facet.insert(vertex(d, cell, k));
+    return facet;
+}
+
+struct StoreFacts {
+    size_t flat_cells = 0;  // inner cells of exactly zero orientation on the stored floats
+};
+
+// Every invariant of store_format.h the builder owns, checked exhaustively (sets of a few hundred
+// probes): sizes and remaps; slots; every inner cell positively oriented, exactly (a flat cell, zero,
+// is counted and returned); neighbours symmetric and across the facet opposite their slot; outer
+// cells on the hull facets, wound outward exactly; every probe in a cell; hull normals unit on the
+// hull and zero inside; grid entries inner cells holding their centres (when inside); and no peeling:
+// the boundary of the inner cells is convex and holds every probe (so it is the convex hull), and the
+// inner cells' measures add up to the measure it encloses (so they tile it).
+StoreFacts check_store(const StoreData& d) {
+    const uint32_t dim = d.dimension, cells = d.cell_count(), inner = d.inner_cell_count, probes = d.probe_count();
+    const bool extrapolates = !(d.flags & tetprobe::kFlagNoExtrapolation);
+    REQUIRE(dim <= 3);
+    REQUIRE((dim == 1 || dim == 2 || d.axis == 0));
+    REQUIRE(d.axis <= 2);
+    REQUIRE(d.positions.size() == 3 * size_t(probes));
+    REQUIRE(d.normals.size() == 3 * size_t(probes));
+    REQUIRE(d.sh.size() == 27 * size_t(probes));
+    REQUIRE(d.input_remap.size() == d.input_probe_count);
+    REQUIRE(d.cell_neighbours.size() == d.cell_vertices.size());
+    REQUIRE(d.cell_vertices.size() == 4 * size_t(cells));
+    REQUIRE(d.grid_cells.size() == size_t(d.grid[0]) * d.grid[1] * d.grid[2]);
+    REQUIRE(inner >= 1);
+    if (dim == 0) REQUIRE(cells == 1);
+    if (!extrapolates || dim == 0) REQUIRE(cells == inner);
+
+    Failures f;
+    for (uint32_t i = 0; i < d.input_probe_count; ++i) BUILDER_CHECK(f, d.input_remap[i] < probes, "input " << i);
+    for (uint32_t j = 0; j < probes; ++j)
+        BUILDER_CHECK(f, d.probe_source[j] < d.input_probe_count && d.input_remap[d.probe_source[j]] == j, "probe " << j);
+    f.report("remaps");
+
+    StoreFacts facts;
+    std::vector<char> used(probes, 0);
+    Failures slots, orientation, links, winding;
+    for (uint32_t c = 0; c < cells; ++c) {
+        const bool is_inner = c < inner;
+        for (uint32_t k = 0; k < 4; ++k) {
+            const uint32_t v = vertex(d, c, k), n = neighbour(d, c, k);
+            if (k > dim) {
+                BUILDER_CHECK(slots, v == kNone32 && n == kNone32, "cell " << c << " slot " << k);
+            } else if (k == dim && !is_inner) {
+                BUILDER_CHECK(slots, v == kOuter32 && n < inner, "outer cell " << c);
+            } else {
+                BUILDER_CHECK(slots, v < probes, "cell " << c << " slot " << k);
+                if (v < probes && is_inner) used[v] = 1;
+            }
+        }
+        if (is_inner && dim >= 1) {
+            const int o = cell_orientation(d, c);
+            BUILDER_CHECK(orientation, o >= 0, "cell " << c);
+            facts.flat_cells += o == 0;
+        }
+        // Links: n across the facet opposite slot k, and n links back across the same facet.
+        for (uint32_t k = 0; k <= dim && dim >= 1; ++k) {
+            const uint32_t n = neighbour(d, c, k);
+            if (n == kNone32) {
+                BUILDER_CHECK(links, (is_inner && (!extrapolates || dim == 0)) || (!is_inner && dim == 1 && k == 0),
+                              "cell " << c << " slot " << k << " has no neighbour");
+                continue;
+            }
+            BUILDER_CHECK(links, n < cells, "cell " << c << " slot " << k);
+            if (n >= cells) continue;
+            uint32_t back = 4;
+            for (uint32_t m = 0; m <= dim; ++m)
+                if (neighbour(d, n, m) == c) back = m;
+            BUILDER_CHECK(links, back <= dim, "cell " << c << " slot " << k << " -> " << n << " does not link back");
+            if (back > dim) continue;
+            if (is_inner && n < inner) {
+                BUILDER_CHECK(links, facet_without(d, c, k) == facet_without(d, n, back), "inner " << c << "/" << n);
+            } else if (is_inner) {
+                BUILDER_CHECK(links, back == dim && facet_without(d, c, k) == facet_without(d, n, dim), "hull " << c);
+                // Outward winding: the inner cell's vertex opposite the facet is on the negative side.
+                Vec P[3];
+                for (uint32_t m = 0; m < dim; ++m) P[m] = position(d, vertex(d, n, m));
+                const Vec x = position(d, vertex(d, c, k));
+                if (dim == 3) BUILDER_CHECK(winding, orient3d(P[0], P[1], P[2], x) <= 0, "outer " << n);
+                if (dim == 3 && facts.flat_cells == 0) BUILDER_CHECK(winding, orient3d(P[0], P[1], P[2], x) < 0, "outer " << n);
+                if (dim == 2) BUILDER_CHECK(winding, orient2d(d, P[0], P[1], x) <= 0, "outer " << n);
+                if (dim == 1) {
+                    // Slot 0 is the end probe; the inner cell's other probe lies the other way along the axis.
+                    const uint32_t end = vertex(d, n, 0);
+                    BUILDER_CHECK(winding, end == vertex(d, c, 1 - k), "outer " << n);
+                    const Vec ray = normal(d, end);
+                    BUILDER_CHECK(winding, ray.dot(position(d, end) - x) > 0, "outer " << n);
+                }
+            } else if (n >= inner) {
+                // Outer neighbours share d - 1 probes: the facets without the slot each one links by.
+                std::multiset<uint32_t> a = facet_without(d, c, k), b = facet_without(d, n, back);
+                BUILDER_CHECK(links, k < dim && back < dim && a == b, "outer " << c << "/" << n);
+            }
+        }
+    }
+    slots.report("slots");
+    orientation.report("inner cells positively oriented (exactly)");
+    links.report("neighbour links");
+    winding.report("outer cells wound outward (exactly)");
+    REQUIRE(std::count(used.begin(), used.end(), 1) == int(probes));
+
+    // Hull normals: unit on the hull (probes of outer cells), zero elsewhere.
+    if (extrapolates && dim >= 1) {
+        std::vector<char> on_hull(probes, 0);
+        for (uint32_t c = inner; c < cells; ++c)
+            for (uint32_t k = 0; k < dim; ++k) on_hull[vertex(d, c, k)] = 1;
+        Failures normals;
+        for (uint32_t j = 0; j < probes; ++j) {
+            const double length = normal(d, j).norm();
+            BUILDER_CHECK(normals, on_hull[j] ? std::fabs(length - 1) < 1e-6 : length == 0, "probe " << j);
+        }
+        normals.report("hull normals");
+    }
+
+    // No peeling: the hull facets (inner facets without an inner neighbour) are convex, with every
+    // probe on their inner side or on them, and the inner cells add up to what they enclose.
+    if (dim >= 2) {
+        std::vector<std::array<Vec, 3>> facets;
+        double enclosed = 0, tiled = 0;
+        static const int kOthers[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
+        for (uint32_t c = 0; c < inner; ++c) {
+            tiled += cell_measure(d, c);
+            for (uint32_t k = 0; k <= dim; ++k) {
+                const uint32_t n = neighbour(d, c, k);
+                if (n < inner) continue;
+                std::array<Vec, 3> facet;
+                if (dim == 3) {
+                    for (int m = 0; m < 3; ++m) facet[size_t(m)] = position(d, vertex(d, c, uint32_t(kOthers[k][m])));
+                    enclosed += facet[0].dot(facet[1].cross(facet[2])) / 6;
+                } else {
+                    facet[0] = position(d, vertex(d, c, (k + 2) % 3));
+                    facet[1] = position(d, vertex(d, c, (k + 1) % 3));
+                    const Eigen::Vector2d a = plane_uv(d, facet[0]), b = plane_uv(d, facet[1]);
+                    enclosed += (b.x() * a.y() - a.x() * b.y()) / 2;  // the boundary runs clockwise in (u, v)
+                }
+                facets.push_back(facet);
+            }
+        }
+        Failures convex;
+        for (const auto& facet : facets)
+            for (uint32_t j = 0; j < probes; ++j) {
+                const int side = dim == 3 ? orient3d(facet[0], facet[1], facet[2], position(d, j))
+                                          : orient2d(d, facet[0], facet[1], position(d, j));
+                BUILDER_CHECK(convex, side <= 0, "probe " << j << " beyond a hull facet");
+            }
+        convex.report("the inner cells' boundary is the convex hull");
+        INFO("inner cells " << tiled << ", enclosed by their boundary " << enclosed);
+        REQUIRE(tiled == Approx(enclosed).epsilon(1e-9));
+    }
+
+    // Grid entries: inner cells, holding their centre when some inner cell does (exactly).
+    Failures grid;
+    for (uint32_t z = 0; z < d.grid[2]; ++z)
+        for (uint32_t y = 0; y < d.grid[1]; ++y)
+            for (uint32_t x = 0; x < d.grid[0]; ++x) {
+                const uint32_t g = d.grid_cells[(size_t(z) * d.grid[1] + y) * d.grid[0] + x];
+                BUILDER_CHECK(grid, g < inner, "grid " << x << "," << y << "," << z);
+            }
+    grid.report("grid entries");
+    return facts;
+}
+
+// A lattice under a random rotation, rounded to float: nearly (not exactly) coplanar and cospherical
+// everywhere, the hardest family for exact decisions.
+families::ProbeSet rotated_lattice(int n, uint32_t seed, double spacing = 1, double offset = 0) {
+    families::ProbeSet s{"rotated lattice " + std::to_string(n) + " seed " + std::to_string(seed), {}};
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g;
+    const Eigen::Quaterniond q = Eigen::Quaterniond(g(rng), g(rng), g(rng), g(rng)).normalized();
+    const Eigen::Matrix3d r = q.toRotationMatrix();
+    for (int z = 0; z < n; ++z)
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const Vec p = r * Vec(x, y, z) * spacing + Vec::Constant(offset);
+                s.add(p.x(), p.y(), p.z());
+            }
+    return s;
+}
+
 }  // namespace
 
 static void check_structure_of(const std::vector<families::ProbeSet>& sets) {
     for (const auto& set : sets) {
         for (uint32_t flags : {0u, uint32_t(TP_BUILD_NO_EXTRAPOLATION)}) {
             INFO(set.name << " flags " << flags);
-            const StoreData d = build(set.positions, flags);
-            structure::check_all(d);
+            check_store(build(set.positions, flags));
         }
     }
 }
 
-TEST_CASE("builder: structure follows store_format.h for general sets", "[builder]") {
+TEST_CASE("builder: every inner cell is positively oriented and every outer cell wound outward, exactly", "[builder]") {
     check_structure_of({families::random_cloud(150, 1), families::lattice(2, 2, 2), families::lattice(4, 3, 5),
-                        families::lattice(5, 5, 5, 1, 2.4e-7), families::slab(6, 1e-3)});
+                        families::lattice(5, 5, 5, 1, 2.4e-7), families::lattice(6, 6, 6, 1, 2.4e-7, 3),
+                        families::slab(6, 1e-3), families::dense_room_in_a_level(5)});
 }
 
-TEST_CASE("builder: structure follows store_format.h for flat sets and lines", "[builder]") {
+TEST_CASE("builder: rotated lattices are oriented exactly, and tiled without peeling", "[builder]") {
+    std::vector<families::ProbeSet> sets;
+    for (uint32_t seed : {1u, 2u, 3u}) sets.push_back(rotated_lattice(5 + int(seed), seed));
+    sets.push_back(rotated_lattice(6, 4, 0.5, 1000.0));  // far from the world origin
+    check_structure_of(sets);
+}
+
+TEST_CASE("builder: flat sets and lines are oriented exactly in their stored coordinates", "[builder]") {
     check_structure_of({families::plane(60, 2), families::tilted_plane_rounded(80, 3), families::line(7),
-                        families::racetrack(40)});
+                        families::racetrack(40), families::lattice(6, 5, 1), families::lattice(7, 1, 4)});
+}
+
+TEST_CASE("builder: the axis of a flat set is the one dropped, of a line the one it runs along", "[builder]") {
+    // A plane x = 3 is triangulated in (y, z): axis 0. A plane y = const: axis 1, in (x, z).
+    std::vector<float> yz, xz;
+    for (int i = 0; i < 5; ++i)
+        for (int j = 0; j < 4; ++j) {
+            yz.insert(yz.end(), {3.0f, float(i), float(j * j)});
+            xz.insert(xz.end(), {float(i * i), -2.0f, float(j)});
+        }
+    CHECK(build(yz).axis == 0);
+    CHECK(build(xz).axis == 1);
+    CHECK(build(families::plane(30, 4).positions).axis == 2);
+    // Lines: the largest component of the direction (0.5, -0.25, 0.75) is z.
+    const StoreData line = build(families::line(6).positions);
+    REQUIRE(line.dimension == 1);
+    CHECK(line.axis == 2);
+    // Segments are ordered by the stored coordinate along that axis: v0 < v1.
+    for (uint32_t c = 0; c < line.inner_cell_count; ++c)
+        CHECK(position(line, vertex(line, c, 0))[2] < position(line, vertex(line, c, 1))[2]);
 }
 
 TEST_CASE("builder: set dimension follows the shape", "[builder]") {
@@ -83,7 +385,7 @@ TEST_CASE("builder: set dimension follows the shape", "[builder]") {
 
 TEST_CASE("builder: one probe is one inner cell and no outer cell", "[builder]") {
     const StoreData d = build({5, -2, 7});
-    structure::check_all(d);
+    check_store(d);
     REQUIRE(d.dimension == 0);
     REQUIRE(d.cell_count() == 1);
     REQUIRE(d.inner_cell_count == 1);
@@ -97,26 +399,26 @@ TEST_CASE("builder: one probe is one inner cell and no outer cell", "[builder]")
 TEST_CASE("builder: two probes and collinear probes make segments with two end cells", "[builder]") {
     SECTION("two probes") {
         const StoreData d = build({0, 0, 0, 2, 4, 4});
-        structure::check_all(d);
+        check_store(d);
         REQUIRE(d.dimension == 1);
         REQUIRE(d.inner_cell_count == 1);
         REQUIRE(d.cell_count() == 3);
         // The ends' rays point away from each other along the segment.
-        const reference::Vec n0 = reference::normal(d, 0), n1 = reference::normal(d, 1);
-        REQUIRE(n0.dot(reference::Vec(2, 4, 4).normalized()) == Approx(-1));
-        REQUIRE(n1.dot(reference::Vec(2, 4, 4).normalized()) == Approx(1));
+        const Vec n0 = normal(d, 0), n1 = normal(d, 1);
+        REQUIRE(n0.dot(Vec(2, 4, 4).normalized()) == Approx(-1));
+        REQUIRE(n1.dot(Vec(2, 4, 4).normalized()) == Approx(1));
     }
     SECTION("collinear, unsorted input") {
         const std::vector<float> p = {3, 3, 3, 0, 0, 0, 1, 1, 1, 4, 4, 4, 2, 2, 2};
         const StoreData d = build(p);
-        structure::check_all(d);
+        check_store(d);
         REQUIRE(d.dimension == 1);
         REQUIRE(d.inner_cell_count == 4);
         REQUIRE(d.cell_count() == 6);
         // Segments join neighbours along the line: every segment is one unit of (1,1,1) long.
         for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
-            const reference::Vec a = reference::position(d, d.cell_vertices[4 * c]);
-            const reference::Vec b = reference::position(d, d.cell_vertices[4 * c + 1]);
+            const Vec a = position(d, d.cell_vertices[4 * c]);
+            const Vec b = position(d, d.cell_vertices[4 * c + 1]);
             REQUIRE((a - b).norm() == Approx(std::sqrt(3.0)));
         }
     }
@@ -125,14 +427,14 @@ TEST_CASE("builder: two probes and collinear probes make segments with two end c
 TEST_CASE("builder: flat sets are triangulated in their plane", "[builder]") {
     SECTION("three probes") {
         const StoreData d = build({0, 0, 0, 1, 0, 0, 0, 1, 0});
-        structure::check_all(d);
+        check_store(d);
         REQUIRE(d.dimension == 2);
         REQUIRE(d.inner_cell_count == 1);
         REQUIRE(d.cell_count() == 4);
     }
     SECTION("a square lattice gives two triangles per square and no cell off the plane") {
         const StoreData d = build(families::lattice(6, 5, 1).positions);
-        structure::check_all(d);
+        check_store(d);
         REQUIRE(d.dimension == 2);
         REQUIRE(d.inner_cell_count == 2 * 5 * 4);
         REQUIRE(d.cell_count() - d.inner_cell_count == 2 * (5 + 4));  // boundary edges
@@ -151,7 +453,7 @@ TEST_CASE("builder: duplicates and near-duplicates merge into the first, with th
         for (int c = 0; c < 27; ++c) sh.push_back(float(c));
     }
     const StoreData d = build(set.positions, 0, &sh);
-    structure::check_all(d);
+    check_store(d);
     REQUIRE(d.input_probe_count == base + 5);
     REQUIRE(d.probe_count() == base);
     for (size_t i = 0; i < 5; ++i) {
@@ -178,7 +480,7 @@ TEST_CASE("builder: probes closer than the merge tolerance merge, farther ones d
     settings.merge_tolerance = 1e-4;
     StoreData kept = tetprobe::build_store_data(p.data(), 12, nullptr, 108, p.size() / 3, settings);
     REQUIRE(kept.probe_count() == 28);
-    structure::check_all(kept);
+    check_store(kept);
 }
 
 TEST_CASE("builder: a flat set merges probes that differ only across its plane", "[builder]") {
@@ -188,7 +490,7 @@ TEST_CASE("builder: a flat set merges probes that differ only across its plane",
     REQUIRE(d.dimension == 2);
     REQUIRE(d.probe_count() == 16);
     REQUIRE(d.input_remap[16] == d.input_remap[5]);
-    structure::check_all(d);
+    check_store(d);
 }
 
 TEST_CASE("builder: no extrapolation leaves hull facets without neighbours", "[builder]") {
@@ -198,58 +500,141 @@ TEST_CASE("builder: no extrapolation leaves hull facets without neighbours", "[b
     size_t open = 0;
     for (uint32_t n : d.cell_neighbours) open += n == tetprobe::kNone32;
     REQUIRE(open > 0);
-    structure::check_all(d);
+    check_store(d);
 }
 
-TEST_CASE("builder: cell 0 is the inner cell nearest the probes' mean and the grid covers the set", "[builder]") {
+TEST_CASE("builder: cell 0 is the inner cell nearest the centre and the grid names cells holding its centres", "[builder]") {
     const StoreData d = build(families::random_cloud(150, 5, 4.0, 20.0).positions);
-    reference::Vec mean = reference::Vec::Zero();
-    for (uint32_t j = 0; j < d.probe_count(); ++j) mean += reference::position(d, j) / d.probe_count();
+    Vec centre;
+    for (int a = 0; a < 3; ++a) centre[a] = 0.5 * (double(d.bounds_min[a]) + double(d.bounds_max[a]));
     auto centroid = [&](uint32_t c) {
-        reference::Vec s = reference::Vec::Zero();
-        for (uint32_t k = 0; k < 4; ++k) s += reference::position(d, d.cell_vertices[4 * c + k]) / 4;
+        Vec s = Vec::Zero();
+        for (uint32_t k = 0; k < 4; ++k) s += position(d, d.cell_vertices[4 * c + k]) / 4;
         return s;
     };
-    const double best = (centroid(0) - mean).norm();
-    for (uint32_t c = 1; c < d.inner_cell_count; ++c) REQUIRE((centroid(c) - mean).norm() >= best - 1e-6);
+    const double best = (centroid(0) - centre).norm();
+    for (uint32_t c = 1; c < d.inner_cell_count; ++c) REQUIRE((centroid(c) - centre).norm() >= best - 1e-6);
     REQUIRE(d.grid[0] * d.grid[1] * d.grid[2] > 1);
-    // Grid cells whose centre lies inside the hull name a cell that contains it.
-    const reference::Frame frame = reference::frame_of(d);
+    // A grid centre that some inner cell holds (exactly) is held by the cell its entry names.
+    auto holds = [&](uint32_t c, const Vec& p) {
+        for (uint32_t k = 0; k < 4; ++k)
+            if (cell_orientation(d, c, &p, k) < 0) return false;
+        return true;
+    };
     size_t inside = 0;
     for (uint32_t z = 0; z < d.grid[2]; ++z)
         for (uint32_t y = 0; y < d.grid[1]; ++y)
             for (uint32_t x = (y + z) % 3; x < d.grid[0]; x += 3) {  // a third of the grid suffices
                 const uint32_t g[3] = {x, y, z};
-                reference::Vec p;
+                Vec p;
                 for (int a = 0; a < 3; ++a)
-                    p[a] = d.bounds_min[a] + (g[a] + 0.5) * (d.bounds_max[a] - d.bounds_min[a]) / d.grid[a];
-                // Inside the hull when some inner cell holds the centre with a margin.
-                double best = -1;
-                for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
-                    double w[4];
-                    reference::inner_barycentrics(d, frame, c, p, w);
-                    best = std::max(best, std::min(std::min(w[0], w[1]), std::min(w[2], w[3])));
-                }
-                if (best < 1e-6) continue;
+                    p[a] = d.bounds_min[a] + (g[a] + 0.5) * (double(d.bounds_max[a]) - d.bounds_min[a]) / d.grid[a];
+                bool held = false;
+                for (uint32_t c = 0; c < d.inner_cell_count && !held; ++c) held = holds(c, p);
+                if (!held) continue;
                 ++inside;
-                double w[4];
-                reference::inner_barycentrics(d, frame, d.grid_cells[(z * d.grid[1] + y) * d.grid[0] + x], p, w);
-                REQUIRE(std::min(std::min(w[0], w[1]), std::min(w[2], w[3])) >= -1e-9);
+                REQUIRE(holds(d.grid_cells[(z * d.grid[1] + y) * d.grid[0] + x], p));
             }
     REQUIRE(inside > 0);
 }
 
-TEST_CASE("builder: origin is the centroid and positions are local", "[builder]") {
+TEST_CASE("builder: origin is the centre of the bounding box and positions are local", "[builder]") {
     const families::ProbeSet set = families::random_cloud(20, 6, 1.0, 1000.0);
     const StoreData d = build(set.positions);
-    double centroid[3] = {0, 0, 0};
-    for (size_t i = 0; i < set.count(); ++i)
-        for (int a = 0; a < 3; ++a) centroid[a] += double(set.positions[3 * i + a]) / double(set.count());
-    for (int a = 0; a < 3; ++a) REQUIRE(d.origin[a] == Approx(centroid[a]).epsilon(1e-12));
+    for (int a = 0; a < 3; ++a) {
+        double lo = set.positions[size_t(a)], hi = lo;
+        for (size_t i = 0; i < set.count(); ++i) {
+            lo = std::min(lo, double(set.positions[3 * i + a]));
+            hi = std::max(hi, double(set.positions[3 * i + a]));
+        }
+        REQUIRE(d.origin[a] == 0.5 * (lo + hi));
+    }
     for (uint32_t j = 0; j < d.probe_count(); ++j)
         for (int a = 0; a < 3; ++a)
-            REQUIRE(double(d.positions[3 * j + a]) + d.origin[a] ==
-                    Approx(double(set.positions[3 * d.probe_source[j] + a])).margin(1e-4));
+            REQUIRE(d.positions[3 * j + a] == float(double(set.positions[3 * d.probe_source[j] + a]) - d.origin[a]));
+}
+
+namespace {
+
+// Builds `set` with SH, then shuffled and reversed copies, and requires the same store: positions,
+// normals, SH, cells, links, grid, origin, bit for bit; the remaps agree up to the permutation.
+void require_order_independent(const families::ProbeSet& set, uint32_t seed) {
+    const size_t n = set.count();
+    std::vector<float> sh(27 * n);
+    for (size_t i = 0; i < sh.size(); ++i) sh[i] = float((i * 7919) % 1013) * 0.001f;
+    const StoreData a = build(set.positions, 0, &sh);
+    std::mt19937 rng(seed);
+    for (int trial = 0; trial < 4; ++trial) {
+        std::vector<uint32_t> perm(n);  // shuffled input i is input perm[i]
+        std::iota(perm.begin(), perm.end(), 0u);
+        if (trial == 0) std::reverse(perm.begin(), perm.end());
+        else std::shuffle(perm.begin(), perm.end(), rng);
+        std::vector<float> p(3 * n), q(27 * n);
+        for (size_t i = 0; i < n; ++i) {
+            std::copy_n(&set.positions[3 * size_t(perm[i])], 3, &p[3 * i]);
+            std::copy_n(&sh[27 * size_t(perm[i])], 27, &q[27 * i]);
+        }
+        const StoreData b = build(p, 0, &q);
+        INFO(set.name << " trial " << trial);
+        for (int k = 0; k < 3; ++k) REQUIRE(a.origin[k] == b.origin[k]);
+        REQUIRE(a.dimension == b.dimension);
+        REQUIRE(a.axis == b.axis);
+        REQUIRE(a.positions == b.positions);
+        REQUIRE(a.normals == b.normals);
+        REQUIRE(a.sh == b.sh);
+        REQUIRE(a.inner_cell_count == b.inner_cell_count);
+        REQUIRE(a.cell_vertices == b.cell_vertices);
+        REQUIRE(a.cell_neighbours == b.cell_neighbours);
+        REQUIRE(a.grid_cells == b.grid_cells);
+        for (size_t i = 0; i < n; ++i) REQUIRE(b.input_remap[i] == a.input_remap[perm[i]]);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("builder: the store does not depend on the order the probes are given in", "[builder]") {
+    require_order_independent(families::random_cloud(300, 21), 1);
+    require_order_independent(families::lattice(5, 5, 5, 1, 2.4e-7, 4), 2);
+    require_order_independent(rotated_lattice(6, 7), 3);
+    require_order_independent(families::dense_room_in_a_level(8), 4);
+    require_order_independent(families::tilted_plane_rounded(60, 9), 5);
+    require_order_independent(families::racetrack(30), 6);
+    require_order_independent(families::line(9), 7);
+}
+
+TEST_CASE("builder: probes are stored along a space-filling curve, cells too", "[builder]") {
+    // Consecutive stored probes are near each other: far nearer on average than in the caller's
+    // (random) order.
+    const families::ProbeSet set = families::random_cloud(2000, 31);
+    const StoreData d = build(set.positions);
+    double stored = 0, given = 0;
+    for (uint32_t j = 1; j < d.probe_count(); ++j) {
+        stored += (position(d, j) - position(d, j - 1)).norm();
+        given += (position(d, d.input_remap[j]) - position(d, d.input_remap[j - 1])).norm();
+    }
+    CHECK(stored < given / 4);
+    double cells = 0;
+    auto centroid = [&](uint32_t c) {
+        Vec s = Vec::Zero();
+        for (uint32_t k = 0; k < 4; ++k) s += position(d, vertex(d, c, k)) / 4;
+        return s;
+    };
+    for (uint32_t c = 2; c < d.inner_cell_count; ++c) cells += (centroid(c) - centroid(c - 1)).norm();
+    CHECK(cells / (d.inner_cell_count - 2) < given / (d.probe_count() - 1) / 4);
+}
+
+TEST_CASE("builder: TP_BUILD_COMPACT is accepted and sets kFlagCompact; the flag bits are the store's", "[builder]") {
+    const std::vector<float> p = families::random_cloud(30, 12).positions;
+    STATIC_REQUIRE(TP_BUILD_NO_EXTRAPOLATION == tetprobe::kFlagNoExtrapolation);
+    STATIC_REQUIRE(TP_BUILD_INDEX32 == tetprobe::kFlagIndex32);
+    STATIC_REQUIRE(TP_BUILD_COMPACT == tetprobe::kFlagCompact);
+    for (uint32_t flags = 0; flags < 8; ++flags) {
+        const StoreData d = build(p, flags);
+        INFO("flags " << flags);
+        REQUIRE(d.flags == flags);
+    }
+    // The compact layout is a layout only: the same cells.
+    REQUIRE(build(p, TP_BUILD_COMPACT).cell_vertices == build(p).cell_vertices);
 }
 
 TEST_CASE("builder: bad input is refused with a status naming the probe", "[builder]") {
@@ -355,7 +740,7 @@ TEST_CASE("builder: strided positions and SH read the same as packed ones", "[bu
     REQUIRE(a.positions == b.positions);
     REQUIRE(a.sh == b.sh);
     REQUIRE(a.cell_vertices == b.cell_vertices);
-    REQUIRE(a.inner_matrices == b.inner_matrices);
+    REQUIRE(a.cell_neighbours == b.cell_neighbours);
 }
 
 TEST_CASE("builder: the data writes a blob that loads and answers at the probes", "[builder]") {
@@ -421,46 +806,6 @@ TEST_CASE("builder: start grid dimensions follow the extents within the cell bud
     REQUIRE(g[0] > 3 * g[1]);
     tetprobe::start_grid_dimensions(lo, lo, 1, g);
     REQUIRE(g[0] * g[1] * g[2] == 1);
-}
-
-TEST_CASE("builder: slivers on the hull are peeled and their probes keep a cell", "[builder]") {
-    // A cube with corners a few ulps off (a "lattice plus eps" cell) and its centre: Delaunay leaves
-    // flat cells between nearly coplanar corners on the hull.
-    const std::vector<Eigen::Vector3d> p = {
-        {-7.43751104e-07, 8.65114723e-07, 9.94369616e-07}, {-2.06838548e-07, -5.27822047e-07, 4.000001},
-        {8.71078145e-07, 4.00000034, -2.24178519e-07},     {4.90963257e-08, 3.99999963, 4.00000069},
-        {4.00000007, -5.4084556e-07, -1.13094212e-07},     {3.99999986, -8.55903814e-08, 4.00000083},
-        {4.00000043, 4.00000056, 8.7825559e-07},           {4.00000004, 3.99999919, 4.00000061},
-        {2, 2, 2}};
-    const tetprobe::SetShape shape = tetprobe::detect_set_dimension(p, 7, 1e-4);
-    REQUIRE(shape.dimension == 3);
-    tetprobe::SimplexMesh mesh = tetprobe::delaunay_tetrahedralize(p);
-    auto thin_hull_cells = [&] {
-        size_t thin = 0;
-        for (size_t c = 0; c < mesh.cell_count(); ++c) {
-            bool hull = false;
-            for (int k = 0; k < 4; ++k) hull = hull || mesh.neighbours[c][k] == tetprobe::kNone32;
-            thin += hull && tetprobe::cell_thickness(mesh, c, p, shape) < tetprobe::kSliverThickness;
-        }
-        return thin;
-    };
-    const size_t before = thin_hull_cells(), cells = mesh.cell_count();
-    REQUIRE(before > 0);
-    const size_t peeled = tetprobe::peel_hull_slivers(mesh, p, shape);
-    REQUIRE(peeled >= before);
-    REQUIRE(mesh.cell_count() == cells - peeled);
-    REQUIRE(thin_hull_cells() == 0);
-    std::vector<int> used(p.size(), 0);
-    for (size_t c = 0; c < mesh.cell_count(); ++c) {
-        for (int k = 0; k < 4; ++k) {
-            used[mesh.vertices[c][k]] = 1;
-            const uint32_t n = mesh.neighbours[c][k];
-            if (n == tetprobe::kNone32) continue;
-            REQUIRE(n < mesh.cell_count());
-            REQUIRE(std::count(mesh.neighbours[n].begin(), mesh.neighbours[n].end(), uint32_t(c)) == 1);
-        }
-    }
-    REQUIRE(std::count(used.begin(), used.end(), 1) == int(p.size()));
 }
 
 TEST_CASE("builder: a set that crashes TetGen 1.5.0 is contained and retried", "[builder]") {
@@ -558,7 +903,7 @@ TEST_CASE("builder: a flat set already on its plane keeps its coordinates and ma
             }
             if (d.dimension != 2) continue;
             INFO("trial " << trial << " kind " << kind);
-            structure::check_all(d);
+            check_store(d);
             // Stored exactly as given: the local position is the input minus the origin, rounded once.
             for (size_t i = 0; i < size_t(count); ++i) {
                 const uint32_t s = d.input_remap[i];
@@ -567,37 +912,12 @@ TEST_CASE("builder: a flat set already on its plane keeps its coordinates and ma
             }
             // No sliver: with integer coordinates in [-4, 4] a real triangle's area is at least 1/2.
             for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
-                const reference::Vec p0 = reference::position(d, d.cell_vertices[4 * c]);
-                const reference::Vec p1 = reference::position(d, d.cell_vertices[4 * c + 1]);
-                const reference::Vec p2 = reference::position(d, d.cell_vertices[4 * c + 2]);
+                const Vec p0 = position(d, d.cell_vertices[4 * c]);
+                const Vec p1 = position(d, d.cell_vertices[4 * c + 1]);
+                const Vec p2 = position(d, d.cell_vertices[4 * c + 2]);
                 REQUIRE((p1 - p0).cross(p2 - p0).norm() > 0.5);
             }
             require_exact_at_inputs(d, positions);
-        }
-    }
-}
-
-TEST_CASE("builder: inner rows are anchored at each cell's most central probe", "[builder]") {
-    // The rows' float error grows with the distance from the slot-d probe they are relative to, so
-    // that slot holds the probe nearest the cell's centroid (needle cells: a near probe, not the far
-    // one); the permutation is even, so every cell keeps its positive orientation.
-    for (const families::ProbeSet& set : {families::dense_room_in_a_level(5), families::plane(50, 6)}) {
-        const StoreData d = build(set.positions);
-        structure::check_all(d);
-        const uint32_t dim = d.dimension;
-        for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
-            reference::Vec centroid = reference::Vec::Zero();
-            for (uint32_t k = 0; k <= dim; ++k) centroid += reference::position(d, d.cell_vertices[4 * c + k]) / double(dim + 1);
-            const double anchor = (reference::position(d, d.cell_vertices[4 * c + dim]) - centroid).squaredNorm();
-            for (uint32_t k = 0; k < dim; ++k)
-                REQUIRE(anchor <= (reference::position(d, d.cell_vertices[4 * c + k]) - centroid).squaredNorm());
-            for (uint32_t k = 0; k < dim; ++k) REQUIRE(d.inner_matrices[12 * c + 4 * k + 3] == 0.0f);
-            const reference::Vec p0 = reference::position(d, d.cell_vertices[4 * c]);
-            const reference::Vec e1 = reference::position(d, d.cell_vertices[4 * c + 1]) - p0;
-            const reference::Vec e2 = reference::position(d, d.cell_vertices[4 * c + 2]) - p0;
-            const double orientation = dim == 3 ? e1.cross(e2).dot(reference::position(d, d.cell_vertices[4 * c + 3]) - p0)
-                                                : e1.cross(e2).dot(reference::plane_normal(d));
-            REQUIRE(orientation >= 0);
         }
     }
 }
