@@ -318,7 +318,12 @@ TEST_CASE("without extrapolation, points beyond the hull are Status::outside and
     const std::array<hand_built::Vec, 4> corners = {hand_built::Vec(0, 0, 0), hand_built::Vec(1, 0, 0),
                                                     hand_built::Vec(0, 1, 0), hand_built::Vec(0, 0, 1)};
     const Built b = load(hand_built::tetrahedron_store(corners, false));
-    const float outside[][3] = {{-0.01f, 0.2f, 0.2f}, {0.5f, 0.5f, 0.5f}, {0.2f, 0.2f, -1e9f}, {1e9f, 1e9f, 1e9f}};
+    // Decided exactly on the floats: float(1/3) is above 1/3, so three of them sum beyond the face
+    // x + y + z = 1 (by 3e-8), and that point is outside; (0.25, 0.25, 0.5) is on the face.
+    const float third = 1.0f / 3;
+    REQUIRE(double(third) * 3 > 1.0);
+    const float outside[][3] = {{-0.01f, 0.2f, 0.2f}, {0.5f, 0.5f, 0.5f}, {0.2f, 0.2f, -1e9f}, {1e9f, 1e9f, 1e9f},
+                                {third, third, third}};
     for (const auto& p : outside) {
         REQUIRE(b.store->locate(p, -1).status == Status::outside);
         int32_t hint = 0;
@@ -326,8 +331,11 @@ TEST_CASE("without extrapolation, points beyond the hull are Status::outside and
         REQUIRE(b.store->interpolate(p, &hint, sh) == Status::outside);
         for (float x : sh) REQUIRE(x == 0.0f);
     }
-    const float on_hull[][3] = {{0, 0.2f, 0.2f}, {1, 0, 0}, {0.5f, 0.5f, 0}, {1.0f / 3, 1.0f / 3, 1.0f / 3}};
-    for (const auto& p : on_hull) REQUIRE(b.store->locate(p, -1).status == Status::ok);
+    const float on_hull[][3] = {{0, 0.2f, 0.2f}, {1, 0, 0}, {0.5f, 0.5f, 0}, {0.25f, 0.25f, 0.5f}, {0.125f, 0.375f, 0.5f}};
+    for (const auto& p : on_hull) {
+        INFO(p[0] << ", " << p[1] << ", " << p[2]);
+        REQUIRE(b.store->locate(p, -1).status == Status::ok);
+    }
 }
 
 TEST_CASE("outer cells: continuous across the hull and equal to the hull probe along its ray", "[locate]") {
@@ -455,9 +463,12 @@ TEST_CASE("a walk on a valid but non-Delaunay tessellation, from far hints, stil
     std::uniform_real_distribution<double> u(0, 10);
     size_t fallbacks = 0, queries = 0;
     for (int i = 0; i < 3000 / kQueryScale; ++i) {
-        const reference::Vec target(u(rng), u(rng), i % 5 == 0 ? 2.0 : u(rng));  // off the plane too
+        const reference::Vec world(u(rng), u(rng), i % 5 == 0 ? 2.0 : u(rng));  // off the plane too
+        const reference::Vec target = world - reference::Vec(d.origin[0], d.origin[1], d.origin[2]);
         const Query q = make_query(d, target);
         const Location exhaustive = b.store->locate_exhaustive(q.world, Store::Cells::all);
+        INFO("query world " << q.world[0] << ", " << q.world[1] << ", " << q.world[2] << " local " << q.local.transpose()
+                            << " axis " << d.axis << " origin " << d.origin[0] << ", " << d.origin[1] << ", " << d.origin[2]);
         REQUIRE(exhaustive.status == Status::ok);
         for (int32_t hint : {int32_t(-1), any_cell(rng), any_cell(rng)}) {
             const Location loc = b.store->locate(q.world, hint);
@@ -550,7 +561,19 @@ TEST_CASE("walk fallback beyond the hull: the outer cells alone decide as all ce
             REQUIRE(outer.cell == all.cell);
             REQUIRE(weight_difference(weight_map(outer), weight_map(all)) == 0);
             // And the walk itself, from the centre's cell and from no hint, answers the same.
+            // KNOWN FAILURE (reported, not fixed here): on the axis-aligned 4x4x4 lattice, at about 6e4
+            // diagonals out (local -184952, 127061, 246413), two neighbouring outer cells both hold the
+            // point (the slow reference agrees: cell 349 at t 338724 with smallest weight 0.046, cell 350
+            // at t 343909 with 0.091): their sweeps overlap, the walk answers with the first it reaches,
+            // the exhaustive search with the best; weights differ by 0.149.
             const Location walked = b.store->locate(q.world, -1);
+            INFO("walk: cell " << walked.cell << " t " << walked.t << " fallback " << walked.fallback << " steps "
+                               << walked.steps << " weights " << describe(weight_map(walked)) << "; exhaustive: cell "
+                               << all.cell << " t " << all.t << " weights " << describe(weight_map(all))
+                               << "; reference: cell " << reference::locate(b.data, q.local).cell << " weights "
+                               << describe(reference::locate(b.data, q.local).weights) << "; the reference in the walk's cell: score "
+                               << reference::cell_answer(b.data, reference::frame_of(b.data), uint32_t(walked.cell), q.local).score
+                               << " t " << reference::cell_answer(b.data, reference::frame_of(b.data), uint32_t(walked.cell), q.local).t);
             REQUIRE(weight_difference(weight_map(walked), weight_map(all)) <= 1e-4);
         }
     }

@@ -355,7 +355,7 @@ TEST_CASE("the loader names what is wrong", "[store_blob]") {
         std::vector<uint8_t> blob = original;
         const uint16_t bad = 3;  // outer cell 1's inner neighbour (slot 3) must be inner cell 0
         std::memcpy(blob.data() + section(blob, kSectionCells).offset + 2 * (8 + 4 + 3), &bad, 2);
-        expect(blob, Status::invalid_blob, "cell 1 neighbour 3");
+        expect(blob, Status::invalid_blob, "does not list cell 0 back");  // found from cell 0, which rests cell 1 on it
     }
     {
         std::vector<uint8_t> blob = original;
