@@ -411,7 +411,17 @@ void check_rays(const Built& b, Measured& m, size_t limit) {
             REQUIRE(loc.status == tetprobe::Status::ok);
             REQUIRE(loc.kind == tetprobe::CellKind::outer);
             const auto w = weights_of(loc);
-            m.ray_error = std::max(m.ray_error, 1 - (w.count(j) ? w.at(j) : 0.0));
+            const double error = 1 - (w.count(j) ? w.at(j) : 0.0);
+            if (error > 1e-4 && m.ray_error <= 1e-4) {  // say where the first miss went
+                const reference::Answer r = reference::locate(d, q.local);
+                const reference::Answer own = reference::cell_answer(d, b.frame, uint32_t(loc.cell), q.local);
+                WARN("first ray miss: probe " << j << " at " << s << " diagonals: cell " << loc.cell << " t " << loc.t
+                                              << " fallback " << loc.fallback << "; reference: cell " << r.cell << " t " << r.t
+                                              << " score " << r.score << " weight of the probe "
+                                              << (r.weights.count(j) ? r.weights.at(j) : 0.0)
+                                              << "; the reference in the walk's cell: score " << own.score << " t " << own.t);
+            }
+            m.ray_error = std::max(m.ray_error, error);
         }
     }
 }
