@@ -1,11 +1,14 @@
-// libFuzzer target: blob loading must reject or accept any bytes safely, and a store that loads
-// must answer queries without reading out of bounds. The first byte picks a mode: odd modes
-// repair the checksum first, so mutations reach the deeper checks (counts, indices, floats).
+// libFuzzer target: blob loading (format 3, fast and compact layouts; older formats are refused by
+// version) must reject or accept any bytes safely, and a store that loads must answer queries
+// without reading out of bounds. The first byte picks a mode: bit 0 repairs the checksum first, so
+// mutations reach the deeper checks (counts, indices, floats, orientations, neighbours); bit 1 flips
+// the layout flag (kFlagCompact) before that, so one seed of either layout reaches the other's loader.
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_format.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <vector>
 
@@ -13,6 +16,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
     const bool repair_checksum = data[0] & 1;
     std::vector<uint8_t> blob(data + 1, data + size);
+    if ((data[0] & 2) && blob.size() >= sizeof(tetprobe::StoreHeader)) {
+        uint32_t flags;
+        std::memcpy(&flags, blob.data() + offsetof(tetprobe::StoreHeader, flags), sizeof flags);
+        flags ^= tetprobe::kFlagCompact;
+        std::memcpy(blob.data() + offsetof(tetprobe::StoreHeader, flags), &flags, sizeof flags);
+    }
     if (repair_checksum && blob.size() >= tetprobe::kHeaderSize) {
         uint64_t sum = tetprobe::store_checksum(blob.data(), blob.size());
         std::memcpy(blob.data() + tetprobe::kChecksumOffset, &sum, sizeof sum);
@@ -20,9 +29,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     std::unique_ptr<tetprobe::Store> store;
     try {
         store = tetprobe::Store::load(blob.data(), blob.size());
-    } catch (const tetprobe::Error&) {
+    } catch (const tetprobe::Error& e) {
+        // Only these two, and a blob that names another format version is always a version error.
+        if (e.status() != tetprobe::Status::invalid_blob && e.status() != tetprobe::Status::version) __builtin_trap();
         return 0;
     }
+    if (store->header().format_version != tetprobe::kStoreFormatVersion) __builtin_trap();
     // A validated store: queries anywhere, with any hint, must terminate and stay in bounds.
     const auto& h = store->header();
     const float lo[3] = {h.bounds_min[0], h.bounds_min[1], h.bounds_min[2]};
@@ -34,9 +46,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         float p[3];
         for (int k = 0; k < 3; ++k) p[k] = float(h.origin[k] + lo[k] + f[k] * (hi[k] - lo[k]));
         tetprobe::Location loc = store->locate(p, hint);
-        if (loc.status == TP_OK) {
+        if (loc.status == tetprobe::Status::ok) {
             for (int k = 0; k < 4; ++k)
-                if (!std::isfinite(loc.weights[k])) __builtin_trap();
+                if (!std::isfinite(loc.weights[k]) || loc.probes[k] >= h.probe_count) __builtin_trap();
+            if (loc.cell < 0 || uint32_t(loc.cell) >= h.cell_count) __builtin_trap();
         }
         store->interpolate(p, &hint, sh);
         hint = int32_t(size) - 7;  // arbitrary, possibly invalid hints must be safe too

@@ -1,6 +1,8 @@
 // The exact referee for the walk: whether a point lies in an inner cell, decided with Shewchuk's
-// exact orientation predicate (TetGen's copy, which the library links anyway). The stored positions
-// are floats and the query a double, so every input is exact and the answer has no rounding at all.
+// exact orientation predicate (TetGen's copy, which the library links anyway; independent of
+// core/orientation.cpp). The stored positions are floats and the query is the float local point the
+// run time decides with (reference::local_point), so every input is exact and the answer has no
+// rounding at all.
 #pragma once
 
 #include "core/store_data.h"

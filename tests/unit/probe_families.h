@@ -118,4 +118,43 @@ inline ProbeSet racetrack(int per_edge) {
     return s;
 }
 
+// An n^3 lattice of unit spacing under a random rotation (a uniformly random unit quaternion from
+// seed), centred on (offset, offset, offset).
+inline ProbeSet rotated_lattice(int n, uint32_t seed, double offset = 0) {
+    ProbeSet s{"lattice " + std::to_string(n) + "^3 rotated (" + std::to_string(seed) + ")" +
+                   (offset != 0 ? " at " + std::to_string(int64_t(offset)) : std::string()),
+               {}};
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> g;
+    double q[4], norm = 0;
+    for (double& c : q) norm += (c = g(rng)) * c;
+    norm = std::sqrt(norm);
+    for (double& c : q) c /= norm;
+    const double w = q[0], x = q[1], y = q[2], z = q[3];
+    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - w * z), 2 * (x * z + w * y)},
+                            {2 * (x * y + w * z), 1 - 2 * (x * x + z * z), 2 * (y * z - w * x)},
+                            {2 * (x * z - w * y), 2 * (y * z + w * x), 1 - 2 * (x * x + y * y)}};
+    const double c = 0.5 * (n - 1);
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const double p[3] = {i - c, j - c, k - c};
+                s.add(offset + r[0][0] * p[0] + r[0][1] * p[1] + r[0][2] * p[2],
+                      offset + r[1][0] * p[0] + r[1][1] * p[1] + r[1][2] * p[2],
+                      offset + r[2][0] * p[0] + r[2][1] * p[1] + r[2][2] * p[2]);
+            }
+    return s;
+}
+
+// A sparse cloud over a kilometre and `count` probes in a cube `width` wide (1 cm: 1e-5 of the
+// extent) far from the centre.
+inline ProbeSet cluster_in_a_level(int count, double width, uint32_t seed) {
+    ProbeSet s{"cluster of " + std::to_string(count) + " in " + std::to_string(width) + " inside a kilometre", {}};
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0, 1000), v(0, width);
+    for (int i = 0; i < 100; ++i) s.add(u(rng), u(rng), u(rng));
+    for (int i = 0; i < count; ++i) s.add(321.5 + v(rng), 654.25 + v(rng), 123.75 + v(rng));
+    return s;
+}
+
 }  // namespace families

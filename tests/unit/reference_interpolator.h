@@ -1,9 +1,12 @@
 // A slow, independent reference for the builder's output: given a StoreData and a local point, it
 // finds the probes and weights by brute force over every cell, in double, from the probe positions
-// and normals alone (never the stored matrices). Inner cells: barycentric coordinates from signed
-// volumes (3D), signed areas about the set's mean plane normal (2D), projection on the line (1D).
-// Outer cells: the moved hull simplex P_k + t N_k is found by sampling its plane (line) equation
-// f(t) in t and bisecting every sign change, then the root that puts p inside it is kept.
+// and normals alone. It judges the point the run time judges: the query's float local position
+// (local_point below, float(double(world) - origin)), and for a flat set (d = 2) the two stored
+// coordinates other than StoreData::axis (a line, d = 1: coordinate axis alone). Inner cells:
+// barycentric coordinates from signed volumes (3D) or signed areas in the plane's coordinates (2D),
+// the position along the axis (1D). Outer cells: the moved hull facet P_k + t N_k is found by sampling
+// its plane (line) equation f(t) in t and bisecting every sign change, then the root that puts p
+// inside it is kept.
 #pragma once
 
 #include "core/store_data.h"
@@ -30,6 +33,17 @@ inline Vec normal(const StoreData& d, uint32_t probe) {
 }
 inline uint32_t vertex(const StoreData& d, uint32_t cell, uint32_t slot) { return d.cell_vertices[4 * size_t(cell) + slot]; }
 
+// The float local position of a float world position, as the run time forms it, in double.
+inline Vec local_point(const StoreData& d, const float world[3]) {
+    Vec p;
+    for (int k = 0; k < 3; ++k) {
+        // volatile: keep the rounding to float (GCC's SLP vectorizer was seen to fold it away).
+        volatile float local = float(double(world[k]) - d.origin[k]);
+        p[k] = double(local);
+    }
+    return p;
+}
+
 struct Answer {
     bool outside = false;       // beyond the hull of a store without outer cells
     bool outer = false;         // decided by an outer cell
@@ -50,73 +64,44 @@ struct Answer {
     }
 };
 
-// The flat set's plane normal: the mean of the inner triangles' unit normals, signs aligned with the first.
-inline Vec plane_normal(const StoreData& d) {
-    Vec sum = Vec::Zero(), first = Vec::Zero();
-    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
-        Vec n = (position(d, vertex(d, c, 1)) - position(d, vertex(d, c, 0)))
-                    .cross(position(d, vertex(d, c, 2)) - position(d, vertex(d, c, 0)));
-        if (!(n.norm() > 0)) continue;
-        n.normalize();
-        if (first.isZero()) first = n;
-        sum += n.dot(first) < 0 ? Vec(-n) : n;
-    }
-    return sum.normalized();
-}
-
-// The line's direction: from one end of the chain of segments to the other.
-inline Vec line_direction(const StoreData& d) {
-    std::map<uint32_t, int> uses;
-    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
-        ++uses[vertex(d, c, 0)];
-        ++uses[vertex(d, c, 1)];
-    }
-    std::vector<uint32_t> ends;
-    for (const auto& u : uses)
-        if (u.second == 1) ends.push_back(u.first);
-    if (ends.size() != 2) return Vec::UnitX();
-    return (position(d, ends[1]) - position(d, ends[0])).normalized();
-}
-
+// The frame a store decides in: all three coordinates (d = 3, 0), the two coordinates other than
+// axis (d = 2, as (u, v, 0)), or coordinate axis alone (d = 1, as (x, 0, 0)).
 struct Frame {
-    Vec n = Vec::UnitZ();  // 2D
-    Vec u = Vec::UnitX();  // 1D
+    uint32_t dimension = 3;
+    uint32_t axis = 0;
+    Vec project(const Vec& p) const {
+        if (dimension == 2) return Vec(p[axis == 0 ? 1 : 0], p[axis == 2 ? 1 : 2], 0.0);
+        if (dimension == 1) return Vec(p[axis], 0.0, 0.0);
+        return p;
+    }
+    // The unit direction a flat set ignores (the dropped axis); zero otherwise.
+    Vec ignored() const { return dimension == 2 ? Vec(Vec::Unit(axis)) : Vec(Vec::Zero()); }
 };
 
-// For a flat set, the direction a query's offset is ignored along is the builder's choice (its fitted
-// plane normal), not a property of the positions: it is read from the rows (all inner rows are normal
-// to it; the structure tests check it is one direction, near the triangles' mean normal), with the
-// sign of the mean normal. Without rows to read, the mean normal itself.
 inline Frame frame_of(const StoreData& d) {
     Frame f;
-    if (d.dimension == 2) {
-        f.n = plane_normal(d);
-        if (d.inner_matrices.size() >= 12) {
-            const float* m = d.inner_matrices.data();
-            const Vec ignored = Vec(m[0], m[1], m[2]).cross(Vec(m[4], m[5], m[6])).normalized();
-            if (ignored.allFinite()) f.n = ignored.dot(f.n) < 0 ? Vec(-ignored) : ignored;
-        }
-    }
-    if (d.dimension == 1) f.u = line_direction(d);
+    f.dimension = d.dimension;
+    f.axis = d.axis;
     return f;
 }
 
-// Barycentric coordinates of p in inner cell c (slots 0..d).
-inline void inner_barycentrics(const StoreData& d, const Frame& f, uint32_t c, const Vec& p, double w[4]) {
+// Barycentric coordinates of p in inner cell c (slots 0..d), in the store's frame.
+inline void inner_barycentrics(const StoreData& d, const Frame& f, uint32_t c, const Vec& point, double w[4]) {
     const uint32_t dim = d.dimension;
     Vec v[4];
-    for (uint32_t k = 0; k <= dim; ++k) v[k] = position(d, vertex(d, c, k));
+    for (uint32_t k = 0; k <= dim; ++k) v[k] = f.project(position(d, vertex(d, c, k)));
+    const Vec p = f.project(point);
     if (dim == 0) {
         w[0] = 1;
     } else if (dim == 1) {
-        w[0] = (p - v[1]).dot(f.u) / (v[0] - v[1]).dot(f.u);
+        w[0] = (p.x() - v[1].x()) / (v[0].x() - v[1].x());
         w[1] = 1 - w[0];
     } else if (dim == 2) {
         // Linear in p relative to a vertex (no cancellation of large products for far points).
         const Vec e0 = v[0] - v[2], e1 = v[1] - v[2], q = p - v[2];
-        const double area = e0.cross(e1).dot(f.n);
-        w[0] = q.cross(e1).dot(f.n) / area;
-        w[1] = e0.cross(q).dot(f.n) / area;
+        const double area = e0.x() * e1.y() - e0.y() * e1.x();
+        w[0] = (q.x() * e1.y() - q.y() * e1.x()) / area;
+        w[1] = (e0.x() * q.y() - e0.y() * q.x()) / area;
         w[2] = 1 - w[0] - w[1];
     } else {
         const Vec e0 = v[0] - v[3], e1 = v[1] - v[3], e2 = v[2] - v[3], q = p - v[3];
@@ -128,18 +113,19 @@ inline void inner_barycentrics(const StoreData& d, const Frame& f, uint32_t c, c
     }
 }
 
-// f(t) of outer cell c: p lies in the plane (3D) or on the line across the plane (2D) of the moved
-// facet; positive at t = 0 exactly when p is beyond the facet.
+// f(t) of an outer cell (P, N and p already in the store's frame): the orientation of the moved
+// facet with p, positive at t = 0 exactly when p is beyond the facet.
 // (Plain arithmetic: the root search calls it thousands of times, and unoptimised Eigen in the
 // sanitizer build would dominate the test time.)
-inline double moved_facet_equation(const Vec* P, const Vec* N, uint32_t dim, const Frame& f, const Vec& p, double t) {
-    double a[3], u[3], v[3], w[3];
+inline double moved_facet_equation(const Vec* P, const Vec* N, uint32_t dim, const Vec& p, double t) {
+    double a[3], u[3], v[3];
     for (int i = 0; i < 3; ++i) {
         a[i] = P[0][i] + t * N[0][i];
         u[i] = P[1][i] + t * N[1][i] - a[i];
         v[i] = dim == 3 ? P[2][i] + t * N[2][i] - a[i] : p[i] - a[i];
-        w[i] = dim == 3 ? p[i] - a[i] : f.n[i];
     }
+    if (dim == 2) return u[0] * v[1] - u[1] * v[0];
+    const double w[3] = {p[0] - a[0], p[1] - a[1], p[2] - a[2]};
     return (u[1] * v[2] - u[2] * v[1]) * w[0] + (u[2] * v[0] - u[0] * v[2]) * w[1] + (u[0] * v[1] - u[1] * v[0]) * w[2];
 }
 
@@ -199,14 +185,14 @@ inline double set_diagonal(const StoreData& d) {
 
 // The weights cell c gives p, and its score (smallest weight; -inf when c cannot hold p: an outer
 // cell with p not beyond its facet, or a degenerate cell).
-inline Answer cell_answer(const StoreData& d, const Frame& f, uint32_t c, const Vec& p) {
+inline Answer cell_answer(const StoreData& d, const Frame& f, uint32_t c, const Vec& point) {
     const uint32_t dim = d.dimension;
     Answer a;
     a.cell = c;
     a.score = -std::numeric_limits<double>::infinity();
     if (c < d.inner_cell_count) {
         double w[4] = {0, 0, 0, 0};
-        inner_barycentrics(d, f, c, p, w);
+        inner_barycentrics(d, f, c, point, w);
         double score = w[0];
         for (uint32_t k = 0; k <= dim; ++k) {
             if (!std::isfinite(w[k])) return a;
@@ -218,23 +204,23 @@ inline Answer cell_answer(const StoreData& d, const Frame& f, uint32_t c, const 
         return a;
     }
     a.outer = true;
+    const Vec p = f.project(point);
     Vec P[3], N[3];
     for (uint32_t k = 0; k < dim; ++k) {
-        P[k] = position(d, vertex(d, c, k));
-        N[k] = normal(d, vertex(d, c, k));
+        P[k] = f.project(position(d, vertex(d, c, k)));
+        N[k] = f.project(normal(d, vertex(d, c, k)));
     }
     if (dim == 1) {
-        const double beyond = (p - P[0]).dot(N[0]);
-        if (beyond > 0) {
+        if (N[0].x() != 0 && (p.x() - P[0].x()) * N[0].x() > 0) {
             a.score = 1;
-            a.t = beyond;
+            a.t = (p.x() - P[0].x()) / N[0].x();
             a.weights = {{vertex(d, c, 0), 1.0}};
         }
         return a;
     }
-    if (!(moved_facet_equation(P, N, dim, f, p, 0) > 0)) return a;
+    if (!(moved_facet_equation(P, N, dim, p, 0) > 0)) return a;
     const double reach = 4 * ((p - P[0]).norm() + set_diagonal(d)) + 1;
-    const auto roots = sampled_roots([&](double t) { return moved_facet_equation(P, N, dim, f, p, t); }, reach);
+    const auto roots = sampled_roots([&](double t) { return moved_facet_equation(P, N, dim, p, t); }, reach);
     for (double t : roots) {
         double w[3];
         moved_facet_weights(P, N, dim, p, t, w);

@@ -452,7 +452,7 @@ TEST_CASE("bake: the progress callback is called and can cancel", "[bake]") {
         bake_lighting(scene, kCullingProbes, settings);
         FAIL("the bake was not cancelled");
     } catch (const Error& e) {
-        CHECK(e.status() == TP_ERROR_CANCELLED);
+        CHECK(e.status() == tetprobe::Status::cancelled);
     }
 }
 

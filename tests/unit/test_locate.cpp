@@ -1,12 +1,16 @@
 // The walk: its answer equals a brute-force search over all cells (the slow reference in
 // reference_interpolator.h, from positions and normals only) on hand-built stores and on built
 // stores of every probe-set family; hints never change the answer; threads agree with a serial run;
-// stores without extrapolation report TP_ERROR_OUTSIDE; a misled walk ends in the exhaustive search.
+// stores without extrapolation report Status::outside; a misled walk ends in the exhaustive search.
 #include "hand_built_stores.h"
 #include "probe_families.h"
 #include "reference_interpolator.h"
 
+#include "store_structure.h"
+
 #include "bake/store_builder.h"
+#include "core/orientation.h"
+#include "core/plane_projection.h"
 #include "core/store.h"
 #include "core/store_data.h"
 
@@ -38,14 +42,20 @@ struct Query {
     reference::Vec local;  // exactly the float world position minus the origin, in double
 };
 
-// GCC 12 at -O2 (SLP vectorizer) was seen to fold double(float(a + b)) - a into b, dropping the
-// rounding to float; reading the stored floats back through a volatile keeps it.
+// The float world position nearest the target, and the float local point the run time decides with.
 Query make_query(const StoreData& d, const reference::Vec& local_target) {
     Query q;
     for (int k = 0; k < 3; ++k) q.world[k] = float(d.origin[k] + local_target[k]);
-    const volatile float* world = q.world;
-    q.local = reference::Vec(double(world[0]) - d.origin[0], double(world[1]) - d.origin[1], double(world[2]) - d.origin[2]);
+    q.local = reference::local_point(d, q.world);
     return q;
+}
+
+// Whether stored probe `stored` sits exactly where input position `world` lands in the local frame
+// (not moved onto a fitted plane or line, not merged into a probe elsewhere): then a query there is
+// decided on the very same floats, and exact predicates make its weight exactly 1.
+bool at_stored_position(const StoreData& d, const float world[3], uint32_t stored) {
+    const reference::Vec local = reference::local_point(d, world);
+    return local == reference::position(d, stored);
 }
 
 std::map<uint32_t, double> weight_map(const Location& loc) {
@@ -137,16 +147,16 @@ void require_walk_matches_reference(const Built& b, const std::vector<reference:
                                        << ") origin (" << b.data.origin[0] << ", " << b.data.origin[1] << ", "
                                        << b.data.origin[2] << ") start " << start);
             if (expected.outside) {
-                REQUIRE(loc.status == TP_ERROR_OUTSIDE);
+                REQUIRE(loc.status == Status::outside);
                 continue;
             }
-            REQUIRE(loc.status == TP_OK);
+            REQUIRE(loc.status == Status::ok);
             if (far)
                 far_fallbacks += loc.fallback;
             else
                 REQUIRE(!loc.fallback);
             const double difference = weight_difference(weight_map(loc), expected.weights);
-            INFO("walk: cell " << loc.cell << " kind " << loc.kind << " t " << loc.t << " weights " << describe(weight_map(loc))
+            INFO("walk: cell " << loc.cell << " kind " << int(loc.kind) << " t " << loc.t << " weights " << describe(weight_map(loc))
                                << "; reference: cell " << expected.cell << " t " << expected.t << " weights "
                                << describe(expected.weights));
             worst = std::fmax(worst, difference);
@@ -175,7 +185,7 @@ TEST_CASE("walk = brute force: hand-built tetrahedron, line and point", "[locate
     for (const reference::Vec& p : query_points(point.data, 50, 3)) {
         const Query q = make_query(point.data, p);
         const Location loc = point.store->locate(q.world, -1);
-        REQUIRE(loc.status == TP_OK);
+        REQUIRE(loc.status == Status::ok);
         REQUIRE(loc.probes[0] == 0);
         REQUIRE(loc.weights[0] == 1.0f);
     }
@@ -183,7 +193,7 @@ TEST_CASE("walk = brute force: hand-built tetrahedron, line and point", "[locate
 
 void require_walk_matches_reference(const std::vector<families::ProbeSet>& sets) {
     for (const families::ProbeSet& set : sets) {
-        for (uint32_t flags : {0u, uint32_t(TP_BUILD_NO_EXTRAPOLATION)}) {
+        for (uint32_t flags : {0u, uint32_t(kFlagNoExtrapolation)}) {
             INFO(set.name << " with " << set.count() << " probes, flags " << flags);
             const Built b = build(set.positions, flags);
             require_walk_matches_reference(b, query_points(b.data, 150 / kQueryScale, 7), 2e-4);
@@ -225,20 +235,34 @@ TEST_CASE("every input probe is exact and linear fields are reproduced inside th
     for (const families::ProbeSet& set : {families::random_cloud(200, 31), families::plane(50, 32), families::line(9)}) {
         const Built b = build(set.positions);
         int32_t hint = -1;
+        size_t exact = 0;
         for (size_t i = 0; i < set.count(); ++i) {
             const Location loc = b.store->locate(&set.positions[3 * i], hint);
-            REQUIRE(loc.status == TP_OK);
+            REQUIRE(loc.status == Status::ok);
             const uint32_t survivor = b.store->input_to_stored(uint32_t(i));
-            REQUIRE(weight_map(loc)[survivor] == Approx(1.0).margin(1e-5));
+            INFO(set.name << " probe " << i << " (stored " << survivor << "): weights " << describe(weight_map(loc)));
+            // Exact predicates on the stored floats: weight exactly 1 where the probe is stored as given.
+            if (at_stored_position(b.data, &set.positions[3 * i], survivor)) {
+                ++exact;
+                REQUIRE(weight_map(loc)[survivor] == 1.0);
+                REQUIRE(weight_map(loc).size() == 1);
+            } else {
+                REQUIRE(weight_map(loc)[survivor] == Approx(1.0).margin(1e-5));
+            }
             hint = loc.cell;
         }
-        // sum_k w_k P_k = p at points inside the hull (the weights are barycentric coordinates).
+        // These sets are exactly representable (a cloud, a plane at z = 2, a line with binary steps):
+        // nothing is moved.
+        REQUIRE(exact == set.count());
+        // sum_k w_k P_k = p at points inside the hull (the weights are barycentric coordinates), in the
+        // store's frame (a flat set ignores the dropped axis, a line every coordinate but its axis).
+        const reference::Frame frame = reference::frame_of(b.data);
         for (const reference::Vec& target : query_points(b.data, 300 / (2 * kQueryScale), 33)) {
             const Query q = make_query(b.data, target);
             const reference::Answer expected = reference::locate(b.data, q.local);
             if (expected.outer || expected.outside) continue;
             const Location loc = b.store->locate(q.world, -1);
-            REQUIRE(loc.kind == TP_CELL_INNER);
+            REQUIRE(loc.kind == CellKind::inner);
             reference::Vec blended = reference::Vec::Zero();
             float sum = 0;
             for (int k = 0; k < 4; ++k) {
@@ -248,10 +272,9 @@ TEST_CASE("every input probe is exact and linear fields are reproduced inside th
                 blended += double(loc.weights[k]) * reference::position(b.data, loc.probes[k]);
             }
             REQUIRE(sum == Approx(1.0f).margin(1e-6));
-            // Off the line or plane of a lower-dimensional set, the point's projection is reproduced.
-            const reference::Vec residual = blended - q.local;
+            const reference::Vec residual = frame.project(blended) - frame.project(q.local);
             const double diagonal = reference::set_diagonal(b.data);
-            if (b.data.dimension == 3) REQUIRE(residual.norm() <= 1e-5 * diagonal);
+            REQUIRE(residual.norm() <= 1e-5 * diagonal);
         }
     }
 }
@@ -291,20 +314,28 @@ TEST_CASE("many threads querying one store get the serial results", "[locate][th
     for (const auto& r : results) REQUIRE(std::memcmp(r.data(), serial.data(), serial.size() * sizeof(float)) == 0);
 }
 
-TEST_CASE("without extrapolation, points beyond the hull are TP_ERROR_OUTSIDE and points on it are inside", "[locate]") {
+TEST_CASE("without extrapolation, points beyond the hull are Status::outside and points on it are inside", "[locate]") {
     const std::array<hand_built::Vec, 4> corners = {hand_built::Vec(0, 0, 0), hand_built::Vec(1, 0, 0),
                                                     hand_built::Vec(0, 1, 0), hand_built::Vec(0, 0, 1)};
     const Built b = load(hand_built::tetrahedron_store(corners, false));
-    const float outside[][3] = {{-0.01f, 0.2f, 0.2f}, {0.5f, 0.5f, 0.5f}, {0.2f, 0.2f, -1e9f}, {1e9f, 1e9f, 1e9f}};
+    // Decided exactly on the floats: float(1/3) is above 1/3, so three of them sum beyond the face
+    // x + y + z = 1 (by 3e-8), and that point is outside; (0.25, 0.25, 0.5) is on the face.
+    const float third = 1.0f / 3;
+    REQUIRE(double(third) * 3 > 1.0);
+    const float outside[][3] = {{-0.01f, 0.2f, 0.2f}, {0.5f, 0.5f, 0.5f}, {0.2f, 0.2f, -1e9f}, {1e9f, 1e9f, 1e9f},
+                                {third, third, third}};
     for (const auto& p : outside) {
-        REQUIRE(b.store->locate(p, -1).status == TP_ERROR_OUTSIDE);
+        REQUIRE(b.store->locate(p, -1).status == Status::outside);
         int32_t hint = 0;
         float sh[27];
-        REQUIRE(b.store->interpolate(p, &hint, sh) == TP_ERROR_OUTSIDE);
+        REQUIRE(b.store->interpolate(p, &hint, sh) == Status::outside);
         for (float x : sh) REQUIRE(x == 0.0f);
     }
-    const float on_hull[][3] = {{0, 0.2f, 0.2f}, {1, 0, 0}, {0.5f, 0.5f, 0}, {1.0f / 3, 1.0f / 3, 1.0f / 3}};
-    for (const auto& p : on_hull) REQUIRE(b.store->locate(p, -1).status == TP_OK);
+    const float on_hull[][3] = {{0, 0.2f, 0.2f}, {1, 0, 0}, {0.5f, 0.5f, 0}, {0.25f, 0.25f, 0.5f}, {0.125f, 0.375f, 0.5f}};
+    for (const auto& p : on_hull) {
+        INFO(p[0] << ", " << p[1] << ", " << p[2]);
+        REQUIRE(b.store->locate(p, -1).status == Status::ok);
+    }
 }
 
 TEST_CASE("outer cells: continuous across the hull and equal to the hull probe along its ray", "[locate]") {
@@ -316,7 +347,7 @@ TEST_CASE("outer cells: continuous across the hull and equal to the hull probe a
         for (double t : {0.0, 0.5, 3.0, 100.0}) {
             const Query q = make_query(b.data, reference::position(b.data, probe) + t * n);
             const Location loc = b.store->locate(q.world, -1);
-            REQUIRE(loc.status == TP_OK);
+            REQUIRE(loc.status == Status::ok);
             REQUIRE(weight_map(loc)[probe] == Approx(1.0).margin(2e-4));
         }
     }
@@ -329,7 +360,7 @@ TEST_CASE("outer cells: continuous across the hull and equal to the hull probe a
     auto weights_at = [&](const reference::Vec& p) {
         const Query q = make_query(b.data, p);
         const Location loc = b.store->locate(q.world, -1);
-        REQUIRE(loc.status == TP_OK);
+        REQUIRE(loc.status == Status::ok);
         return weight_map(loc);
     };
     double largest_jump = 0;
@@ -363,33 +394,104 @@ TEST_CASE("outer cells: continuous across the hull and equal to the hull probe a
     REQUIRE(largest_jump < 1e-3);
 }
 
-TEST_CASE("a walk misled by inconsistent matrices ends in the exhaustive double-precision decision", "[locate]") {
-    using tetprobe::kNone32;
-    // A square of four triangles around its centre, whose matrices all say "leave through slot 0":
-    // the walk circles the centre until the step cap, then the exhaustive search decides.
-    StoreData d;
-    d.dimension = 2;
-    d.flags = kFlagNoExtrapolation;
-    d.positions = {0, 0, 0, 2, 0, 0, 2, 2, 0, 0, 2, 0, 1, 1, 0};
-    d.inner_cell_count = 4;
-    for (uint32_t i = 0; i < 4; ++i) {
-        d.cell_vertices.insert(d.cell_vertices.end(), {i, (i + 1) % 4, 4, kNone32});
-        d.cell_neighbours.insert(d.cell_neighbours.end(), {(i + 1) % 4, (i + 3) % 4, kNone32, kNone32});
-        d.inner_matrices.insert(d.inner_matrices.end(), {0, 0, 0, -1, 0, 0, 0, 1, 0, 0, 0, 0});
+namespace {
+
+// Flips the edge between flat inner cell c and its neighbour across slot i when the quadrilateral is
+// strictly convex (both new triangles positively oriented, exactly); returns whether it flipped.
+// Cells keep their indices; the neighbours of both and the back links around them are updated.
+bool flip_edge(StoreData& d, uint32_t c, uint32_t i) {
+    const uint32_t n = d.cell_neighbours[4 * size_t(c) + i];
+    if (n == kNone32 || n >= d.inner_cell_count) return false;
+    uint32_t j = 0;
+    while (j < 3 && d.cell_neighbours[4 * size_t(n) + j] != c) ++j;
+    REQUIRE(j < 3);
+    uint32_t* cv = &d.cell_vertices[4 * size_t(c)];
+    uint32_t* nv = &d.cell_vertices[4 * size_t(n)];
+    uint32_t* cn = &d.cell_neighbours[4 * size_t(c)];
+    uint32_t* nn = &d.cell_neighbours[4 * size_t(n)];
+    const uint32_t a = cv[i], x = cv[(i + 1) % 3], y = cv[(i + 2) % 3], f = nv[j];
+    // n = (f, y, x) up to rotation: its neighbour across the edge f-x is opposite y, across f-y opposite x.
+    uint32_t nx = kNone32, ny = kNone32;
+    for (uint32_t k = 0; k < 3; ++k) {
+        if (nv[k] == y) nx = nn[k];
+        if (nv[k] == x) ny = nn[k];
     }
-    hand_built::finish(d);
+    const uint32_t cy = cn[(i + 1) % 3], cx = cn[(i + 2) % 3];  // across a-y, across a-x
+    const uint32_t first[4] = {a, x, f, 0}, second[4] = {a, f, y, 0};
+    if (structure::frame_orientation(d, first) <= 0 || structure::frame_orientation(d, second) <= 0) return false;
+    const uint32_t new_c[4] = {a, x, f, kNone32}, new_c_links[4] = {nx, n, cx, kNone32};
+    const uint32_t new_n[4] = {a, f, y, kNone32}, new_n_links[4] = {ny, cy, c, kNone32};
+    std::copy(new_c, new_c + 4, cv);
+    std::copy(new_c_links, new_c_links + 4, cn);
+    std::copy(new_n, new_n + 4, nv);
+    std::copy(new_n_links, new_n_links + 4, nn);
+    auto relink = [&](uint32_t cell, uint32_t from, uint32_t to) {
+        if (cell == kNone32) return;
+        for (uint32_t k = 0; k < 3; ++k)
+            if (d.cell_neighbours[4 * size_t(cell) + k] == from) d.cell_neighbours[4 * size_t(cell) + k] = to;
+    };
+    relink(nx, n, c);
+    relink(cy, c, n);
+    return true;
+}
+
+}  // namespace
+
+TEST_CASE("a walk on a valid but non-Delaunay tessellation, from far hints, still ends in the cell that holds the point",
+          "[locate]") {
+    // Format 3 has no matrices to be inconsistent; what a loaded store can still get wrong is its
+    // tessellation: a valid one (every cell positively oriented, neighbours consistent: the loader
+    // checks exactly that) that is not Delaunay, where a visibility walk may circle (Edelsbrunner's
+    // acyclicity needs Delaunay). Random convex edge flips of a built flat store make such a
+    // tessellation; every walk must still end in a cell that holds the point exactly (the step cap
+    // hands a circling walk to the exhaustive search).
+    families::ProbeSet set = families::plane(60, 71);
+    for (int corner = 0; corner < 4; ++corner) set.add(corner & 1 ? 10 : 0, corner & 2 ? 10 : 0, 2.0);
+    BuildSettings settings;
+    settings.flags = kFlagNoExtrapolation;
+    StoreData d = build_store_data(set.positions.data(), 12, nullptr, 108, set.count(), settings);
+    REQUIRE(d.dimension == 2);
+    std::mt19937 rng(72);
+    std::uniform_int_distribution<uint32_t> pick_cell(0, d.inner_cell_count - 1), pick_slot(0, 2);
+    size_t flips = 0;
+    for (int attempt = 0; attempt < 40 * int(d.inner_cell_count); ++attempt) flips += flip_edge(d, pick_cell(rng), pick_slot(rng));
+    REQUIRE(flips > d.inner_cell_count);
+    structure::check_layout_and_links(d);
+    structure::check_inner_orientation(d);
     const Built b = load(d);
-    const float p[3] = {1.0f, 0.25f, 0.0f};  // in triangle 0 (corners 0, 1 and the centre)
-    const Location loc = b.store->locate(p, 2);
-    REQUIRE(loc.status == TP_OK);
-    REQUIRE(loc.fallback);
-    REQUIRE(loc.cell == 0);
-    std::map<uint32_t, double> m = weight_map(loc);
-    REQUIRE(m[0] == Approx(0.375).margin(1e-6));
-    REQUIRE(m[1] == Approx(0.375).margin(1e-6));
-    REQUIRE(m[4] == Approx(0.25).margin(1e-6));
-    const float beyond[3] = {1.0f, -0.5f, 0.0f};
-    REQUIRE(b.store->locate(beyond, 1).status == TP_ERROR_OUTSIDE);
+    std::uniform_int_distribution<int32_t> any_cell(0, int32_t(d.cell_count()) - 1);
+    std::uniform_real_distribution<double> u(0, 10);
+    size_t fallbacks = 0, queries = 0;
+    for (int i = 0; i < 3000 / kQueryScale; ++i) {
+        const reference::Vec world(u(rng), u(rng), i % 5 == 0 ? 2.0 : u(rng));  // off the plane too
+        const reference::Vec target = world - reference::Vec(d.origin[0], d.origin[1], d.origin[2]);
+        const Query q = make_query(d, target);
+        const Location exhaustive = b.store->locate_exhaustive(q.world, Store::Cells::all);
+        INFO("query world " << q.world[0] << ", " << q.world[1] << ", " << q.world[2] << " local " << q.local.transpose()
+                            << " axis " << d.axis << " origin " << d.origin[0] << ", " << d.origin[1] << ", " << d.origin[2]);
+        REQUIRE(exhaustive.status == Status::ok);
+        for (int32_t hint : {int32_t(-1), any_cell(rng), any_cell(rng)}) {
+            const Location loc = b.store->locate(q.world, hint);
+            ++queries;
+            fallbacks += loc.fallback;
+            INFO("query local " << q.local.transpose() << " hint " << hint << " cell " << loc.cell);
+            REQUIRE(loc.status == Status::ok);
+            REQUIRE(loc.kind == CellKind::inner);
+            // The cell holds the point exactly: no orientation of the query with its edges is negative.
+            float uv[3][2], quv[2];
+            float local[3] = {float(q.local.x()), float(q.local.y()), float(q.local.z())};
+            project_to_plane(local, d.axis, quv);
+            for (int k = 0; k < 3; ++k) project_to_plane(&d.positions[3 * size_t(d.cell_vertices[4 * size_t(loc.cell) + k])], d.axis, uv[k]);
+            for (int k = 0; k < 3; ++k) REQUIRE(orient2d(uv[(k + 1) % 3], uv[(k + 2) % 3], quv) >= 0);
+            // And it gives the exhaustive search's weights (the same cell, or a shared edge or vertex).
+            REQUIRE(weight_difference(weight_map(loc), weight_map(exhaustive)) <= 1e-6);
+        }
+    }
+    WARN("non-Delaunay tessellation (" << flips << " flips of " << d.inner_cell_count << " cells): " << fallbacks << " of "
+                                       << queries << " walks handed over to the exhaustive search");
+    // Outside the square, a store without extrapolation still says so, from any hint.
+    const float beyond[3] = {float(d.origin[0] + 5), float(d.origin[1] - 20), float(d.origin[2])};
+    for (int32_t hint : {int32_t(-1), 0, int32_t(d.cell_count()) - 1}) REQUIRE(b.store->locate(beyond, hint).status == Status::outside);
 }
 
 namespace {
@@ -407,11 +509,12 @@ bool beyond_some_hull_facet(const StoreData& d, const reference::Vec& p) {
             const uint32_t v = d.cell_vertices[4 * size_t(base) + k];
             if (std::find(facet.begin(), facet.end(), v) == facet.end()) apex = v;
         }
-        const reference::Vec p0 = reference::position(d, facet[0]), inside = reference::position(d, apex);
-        const reference::Vec across = d.dimension == 3
-                                          ? reference::Vec((reference::position(d, facet[1]) - p0).cross(reference::position(d, facet[2]) - p0))
-                                          : reference::Vec((reference::position(d, facet[1]) - p0).cross(frame.n));
-        if (across.dot(p - p0) * across.dot(inside - p0) < 0) return true;
+        const reference::Vec p0 = frame.project(reference::position(d, facet[0]));
+        const reference::Vec inside = frame.project(reference::position(d, apex)), q = frame.project(p);
+        const reference::Vec e1 = frame.project(reference::position(d, facet[1])) - p0;
+        const reference::Vec across = d.dimension == 3 ? reference::Vec(e1.cross(reference::position(d, facet[2]) - p0))
+                                                       : reference::Vec(e1.y(), -e1.x(), 0.0);
+        if (across.dot(q - p0) * across.dot(inside - p0) < 0) return true;
     }
     return false;
 }
@@ -439,7 +542,7 @@ TEST_CASE("walk fallback beyond the hull: the outer cells alone decide as all ce
         const double diagonal = (hi - lo).norm();
         for (int i = 0; i < 600 / kQueryScale + 20; ++i) {
             reference::Vec direction(g(rng), g(rng), g(rng));
-            if (b.data.dimension == 2) direction -= direction.dot(reference::frame_of(b.data).n) * reference::frame_of(b.data).n;
+            if (b.data.dimension == 2) direction[b.data.axis] = 0;  // in the plane
             const double radius = diagonal * std::pow(10.0, std::uniform_real_distribution<double>(-0.4, 5.0)(rng));
             const Query q = make_query(b.data, centre + radius * direction.normalized());
             if (!beyond_some_hull_facet(b.data, q.local)) continue;
@@ -448,7 +551,7 @@ TEST_CASE("walk fallback beyond the hull: the outer cells alone decide as all ce
             const Location all = b.store->locate_exhaustive(q.world, Store::Cells::all);
             const Location outer = b.store->locate_exhaustive(q.world, Store::Cells::outer);
             REQUIRE(outer.cell >= int32_t(b.data.inner_cell_count));
-            if (all.kind == TP_CELL_INNER) {
+            if (all.kind == CellKind::inner) {
                 // An inner cell can only win where no outer cell holds the point: it does not hold it either.
                 const reference::Answer r = reference::locate(b.data, q.local);
                 REQUIRE(r.score < 0);
@@ -458,7 +561,19 @@ TEST_CASE("walk fallback beyond the hull: the outer cells alone decide as all ce
             REQUIRE(outer.cell == all.cell);
             REQUIRE(weight_difference(weight_map(outer), weight_map(all)) == 0);
             // And the walk itself, from the centre's cell and from no hint, answers the same.
+            // KNOWN FAILURE (reported, not fixed here): on the axis-aligned 4x4x4 lattice, at about 6e4
+            // diagonals out (local -184952, 127061, 246413), two neighbouring outer cells both hold the
+            // point (the slow reference agrees: cell 349 at t 338724 with smallest weight 0.046, cell 350
+            // at t 343909 with 0.091): their sweeps overlap, the walk answers with the first it reaches,
+            // the exhaustive search with the best; weights differ by 0.149.
             const Location walked = b.store->locate(q.world, -1);
+            INFO("walk: cell " << walked.cell << " t " << walked.t << " fallback " << walked.fallback << " steps "
+                               << walked.steps << " weights " << describe(weight_map(walked)) << "; exhaustive: cell "
+                               << all.cell << " t " << all.t << " weights " << describe(weight_map(all))
+                               << "; reference: cell " << reference::locate(b.data, q.local).cell << " weights "
+                               << describe(reference::locate(b.data, q.local).weights) << "; the reference in the walk's cell: score "
+                               << reference::cell_answer(b.data, reference::frame_of(b.data), uint32_t(walked.cell), q.local).score
+                               << " t " << reference::cell_answer(b.data, reference::frame_of(b.data), uint32_t(walked.cell), q.local).t);
             REQUIRE(weight_difference(weight_map(walked), weight_map(all)) <= 1e-4);
         }
     }

@@ -28,7 +28,7 @@ Error error_of(F f) {
         return e;
     }
     FAIL("no error was thrown");
-    return Error(TP_OK, "");
+    return Error(tetprobe::Status::ok, "");
 }
 
 bool mentions(const Error& e, const std::string& text) {
@@ -67,13 +67,13 @@ TEST_CASE("scene: meshes are validated with messages naming mesh and index", "[s
     std::copy(kQuad, kQuad + 12, nan_vertex);
     nan_vertex[7] = NAN;
     Error e = error_of([&] { scene.add_mesh(nan_vertex, 4, kQuadIndices, 2, grey, nullptr); });
-    CHECK(e.status() == TP_ERROR_SCENE);
+    CHECK(e.status() == tetprobe::Status::scene);
     CHECK(mentions(e, "mesh 1"));
     CHECK(mentions(e, "vertex 2"));
 
     const uint32_t out_of_range[6] = {0, 2, 1, 0, 3, 4};
     e = error_of([&] { scene.add_mesh(kQuad, 4, out_of_range, 2, grey, nullptr); });
-    CHECK(e.status() == TP_ERROR_SCENE);
+    CHECK(e.status() == tetprobe::Status::scene);
     CHECK(mentions(e, "triangle 1"));
     CHECK(mentions(e, "index 4"));
 
@@ -110,7 +110,7 @@ TEST_CASE("scene: lights, sky and probes are validated", "[scene]") {
     CHECK(scene.add_light(light) == 0);
     light.intensity = -1;
     Error e = error_of([&] { scene.add_light(light); });
-    CHECK(e.status() == TP_ERROR_SCENE);
+    CHECK(e.status() == tetprobe::Status::scene);
     CHECK(mentions(e, "light 1"));
     CHECK(mentions(e, "intensity"));
     light.intensity = 1;
@@ -131,7 +131,7 @@ TEST_CASE("scene: lights, sky and probes are validated", "[scene]") {
     light.color[2] = NAN;
     CHECK(mentions(error_of([&] { scene.add_light(light); }), "colour"));
     light.struct_size = 0;
-    CHECK(error_of([&] { scene.add_light(light); }).status() == TP_ERROR_INVALID_ARGUMENT);
+    CHECK(error_of([&] { scene.add_light(light); }).status() == tetprobe::Status::invalid_argument);
     CHECK(scene.lights().size() == 1);
 
     const float sky[3] = {1, 2, 3}, bad_sky[3] = {1, -2, 3};
@@ -189,42 +189,42 @@ TEST_CASE("scene file: inline meshes, OBJ meshes, lights, sky, probes and grids"
 
 TEST_CASE("scene file: errors name the file, the mesh or light and the index", "[scene]") {
     TempDir dir;
-    auto expect = [&](const std::string& json, tp_status status, std::initializer_list<const char*> words) {
+    auto expect = [&](const std::string& json, tetprobe::Status status, std::initializer_list<const char*> words) {
         const std::string path = dir.write("bad.json", json);
         Error e = error_of([&] { load_scene_file(path); });
         CHECK(e.status() == status);
         CHECK(mentions(e, "bad.json"));
         for (const char* w : words) CHECK(mentions(e, w));
     };
-    expect("{\"meshes\": [ {\"vertices\": [1, 2, }", TP_ERROR_SCENE, {"malformed JSON", "line 1"});
-    expect("[1, 2, 3]", TP_ERROR_SCENE, {"expected an object"});
-    expect("{\"mehses\": []}", TP_ERROR_SCENE, {"unknown key \"mehses\""});
-    expect("{}", TP_ERROR_SCENE, {"empty"});
+    expect("{\"meshes\": [ {\"vertices\": [1, 2, }", tetprobe::Status::scene, {"malformed JSON", "line 1"});
+    expect("[1, 2, 3]", tetprobe::Status::scene, {"expected an object"});
+    expect("{\"mehses\": []}", tetprobe::Status::scene, {"unknown key \"mehses\""});
+    expect("{}", tetprobe::Status::scene, {"empty"});
     expect(R"({"meshes": [{"name": "a", "vertices": [0,0,0, 1,0,0, 0,1,0], "indices": [0,1,2]},
                           {"name": "b", "vertices": [0,0,0, 1,0,0, 0,1,0], "indices": [0,1,3]}]})",
-           TP_ERROR_SCENE, {"mesh 1 ('b')", "index 3"});
-    expect(R"({"meshes": [{"vertices": [0,0,0, 1,0,0, 0,1], "indices": [0,1,2]}]})", TP_ERROR_SCENE,
+           tetprobe::Status::scene, {"mesh 1 ('b')", "index 3"});
+    expect(R"({"meshes": [{"vertices": [0,0,0, 1,0,0, 0,1], "indices": [0,1,2]}]})", tetprobe::Status::scene,
            {"mesh 0", "not a multiple of 3"});
-    expect(R"({"meshes": [{"vertices": [0,0,0, 1,0,0, 0,1,0], "indices": [0,1,-2]}]})", TP_ERROR_SCENE,
+    expect(R"({"meshes": [{"vertices": [0,0,0, 1,0,0, 0,1,0], "indices": [0,1,-2]}]})", tetprobe::Status::scene,
            {"mesh 0", "index 2"});
     expect(R"({"meshes": [{"vertices": [0,0,0, 1,0,0, 0,1,0], "indices": [0,1,2], "material": {"albedo": [2,0,0]}}]})",
-           TP_ERROR_SCENE, {"mesh 0", "albedo"});
+           tetprobe::Status::scene, {"mesh 0", "albedo"});
     expect(R"({"meshes": [{"vertices": [0,0,0, 1,0,0, 0,1,0], "indices": [0,1,2], "material": {"albedo": "red"}}]})",
-           TP_ERROR_SCENE, {"albedo", "expected [x, y, z]"});
-    expect(R"({"meshes": [{"name": "walls", "obj": "missing.obj"}]})", TP_ERROR_IO, {"mesh 0 ('walls')", "missing.obj"});
-    expect(R"({"lights": [{"type": "point", "position": [0,0,0]}, {"type": "laser"}]})", TP_ERROR_SCENE,
+           tetprobe::Status::scene, {"albedo", "expected [x, y, z]"});
+    expect(R"({"meshes": [{"name": "walls", "obj": "missing.obj"}]})", tetprobe::Status::io, {"mesh 0 ('walls')", "missing.obj"});
+    expect(R"({"lights": [{"type": "point", "position": [0,0,0]}, {"type": "laser"}]})", tetprobe::Status::scene,
            {"light 1", "laser"});
-    expect(R"({"lights": [{"type": "point", "position": [0,0,0], "intensity": -4}]})", TP_ERROR_SCENE,
+    expect(R"({"lights": [{"type": "point", "position": [0,0,0], "intensity": -4}]})", tetprobe::Status::scene,
            {"light 0", "intensity"});
-    expect(R"({"lights": [{"type": "point"}]})", TP_ERROR_SCENE, {"light 0", "position"});
-    expect(R"({"sky": {"sh": [1, 2, 3]}})", TP_ERROR_SCENE, {"sky", "27"});
-    expect(R"({"sky": {"color": [1, 1, 1]}, "probes": [[0, 0, 0], [1, 2]]})", TP_ERROR_SCENE, {"probes[1]"});
+    expect(R"({"lights": [{"type": "point"}]})", tetprobe::Status::scene, {"light 0", "position"});
+    expect(R"({"sky": {"sh": [1, 2, 3]}})", tetprobe::Status::scene, {"sky", "27"});
+    expect(R"({"sky": {"color": [1, 1, 1]}, "probes": [[0, 0, 0], [1, 2]]})", tetprobe::Status::scene, {"probes[1]"});
 
     dir.write("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 7\n");
-    expect(R"({"meshes": [{"name": "broken", "obj": "broken.obj"}]})", TP_ERROR_SCENE, {"mesh 0 ('broken')"});
+    expect(R"({"meshes": [{"name": "broken", "obj": "broken.obj"}]})", tetprobe::Status::scene, {"mesh 0 ('broken')"});
 
     Error missing = error_of([&] { load_scene_file((dir.path / "nowhere.json").string()); });
-    CHECK(missing.status() == TP_ERROR_IO);
+    CHECK(missing.status() == tetprobe::Status::io);
     CHECK(mentions(missing, "nowhere.json"));
 }
 

@@ -271,7 +271,7 @@ TEST_CASE("shadow caster volume: no false negatives against brute force on rando
             planes = shadow_caster_volume(region.planes, directional ? CasterLight::directional : CasterLight::point, light);
         } catch (const Error& e) {
             REQUIRE(trial % 3 == 2);  // only random tangent planes may fail to bound a polyhedron
-            REQUIRE(e.status() == TP_ERROR_DEGENERATE);
+            REQUIRE(e.status() == tetprobe::Status::degenerate);
             ++skipped;
             continue;
         }
@@ -370,7 +370,7 @@ TEST_CASE("shadow caster volume: bad regions and lights are reported", "[scv]") 
         shadow_caster_volume(open_box, CasterLight::point, Vector3d(0, 5, 0));
         FAIL("an unbounded region was accepted");
     } catch (const Error& e) {
-        CHECK(e.status() == TP_ERROR_DEGENERATE);
+        CHECK(e.status() == tetprobe::Status::degenerate);
     }
     std::vector<Plane> empty = {Plane(1, 0, 0, -1), Plane(-1, 0, 0, -1), Plane(0, 1, 0, 1), Plane(0, -1, 0, 1),
                                 Plane(0, 0, 1, 1), Plane(0, 0, -1, 1)};
