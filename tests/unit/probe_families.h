@@ -127,7 +127,10 @@ inline ProbeSet rotated_lattice(int n, uint32_t seed, double offset = 0) {
     std::mt19937 rng(seed);
     std::normal_distribution<double> g;
     double q[4], norm = 0;
-    for (double& c : q) norm += (c = g(rng)) * c;
+    for (double& c : q) {
+        c = g(rng);
+        norm += c * c;
+    }
     norm = std::sqrt(norm);
     for (double& c : q) c /= norm;
     const double w = q[0], x = q[1], y = q[2], z = q[3];
