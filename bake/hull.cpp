@@ -12,6 +12,92 @@ namespace tetprobe {
 
 namespace {
 
+// A facet whose 2 area / longest edge^2 is below this (an equilateral one has 0.87) is a sliver: it
+// counts in the vertex normals in proportion to that shape, and takes its flat region's direction.
+constexpr double kSliverShape = 0.05;
+
+// Neighbouring facets whose normals differ by less than this (radians) belong to one flat region.
+constexpr double kFlatRegionAngle = 1e-4;
+
+// 2 area / longest edge^2 of triangle (a, b, c): 0.87 equilateral, 0 degenerate.
+double facet_shape(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+    const double longest2 = std::max({(b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm()});
+    const double area2 = (b - a).cross(c - a).norm();
+    return longest2 > 0 ? area2 / longest2 : 0.0;
+}
+
+// Per hull facet, the normal of the flat region it lies in: facets joined across edges while their
+// normals differ by less than kFlatRegionAngle (slivers, whose own direction is rounding noise, join
+// the region of a neighbour), each region's normal the area-weighted mean of its facets'. A side of
+// the hull that is flat up to rounding (a rotated lattice's, rounded to float) thus gives all its
+// probes exactly the same normal, so that its outer cells sweep straight out and never turn over.
+std::vector<Eigen::Vector3d> flat_region_normals(const Hull& hull, const std::vector<Eigen::Vector3d>& p) {
+    const size_t n = hull.facets.size();
+    std::vector<Eigen::Vector3d> area_normal(n);
+    std::vector<bool> sliver(n);
+    std::vector<std::pair<uint64_t, uint32_t>> edges;  // (sorted probe pair, facet)
+    edges.reserve(3 * n);
+    for (uint32_t i = 0; i < n; ++i) {
+        const auto& v = hull.facets[i].probes;
+        area_normal[i] = (p[v[1]] - p[v[0]]).cross(p[v[2]] - p[v[0]]);
+        sliver[i] = !(facet_shape(p[v[0]], p[v[1]], p[v[2]]) >= kSliverShape);
+        for (int k = 0; k < 3; ++k) {
+            const uint64_t a = v[size_t(k)], b = v[size_t((k + 1) % 3)];
+            edges.push_back({a < b ? (a << 32 | b) : (b << 32 | a), i});
+        }
+    }
+    std::sort(edges.begin(), edges.end());
+    std::vector<std::vector<uint32_t>> across(n);
+    for (size_t e = 0; e + 1 < edges.size(); ++e) {
+        if (edges[e].first != edges[e + 1].first) continue;
+        across[edges[e].second].push_back(edges[e + 1].second);
+        across[edges[e + 1].second].push_back(edges[e].second);
+    }
+    auto unit = [&](uint32_t i) { return area_normal[i].normalized(); };
+    std::vector<int64_t> region(n, -1);
+    std::vector<Eigen::Vector3d> sums;
+    // Regions grow from well-shaped facets, then slivers join a neighbouring region (repeatedly, so
+    // that a run of slivers joins too); a sliver with no region beside it keeps its own normal.
+    for (uint32_t seed = 0; seed < n; ++seed) {
+        if (region[seed] >= 0 || sliver[seed]) continue;
+        const int64_t id = int64_t(sums.size());
+        sums.push_back(Eigen::Vector3d::Zero());
+        std::vector<uint32_t> stack{seed};
+        region[seed] = id;
+        while (!stack.empty()) {
+            const uint32_t i = stack.back();
+            stack.pop_back();
+            sums[size_t(id)] += area_normal[i];
+            for (uint32_t j : across[i]) {
+                if (region[j] >= 0 || sliver[j]) continue;
+                if (!(unit(i).dot(unit(j)) >= std::cos(kFlatRegionAngle))) continue;
+                region[j] = id;
+                stack.push_back(j);
+            }
+        }
+    }
+    for (bool joined = true; joined;) {
+        joined = false;
+        for (uint32_t i = 0; i < n; ++i) {
+            if (region[i] >= 0) continue;
+            for (uint32_t j : across[i]) {
+                if (region[j] < 0) continue;
+                region[i] = region[j];
+                joined = true;
+                break;
+            }
+        }
+    }
+    std::vector<Eigen::Vector3d> normals(n);
+    for (uint32_t i = 0; i < n; ++i) {
+        const Eigen::Vector3d own = area_normal[i].norm() > 0 ? unit(i) : Eigen::Vector3d::Zero();
+        normals[i] = region[i] >= 0 ? sums[size_t(region[i])].normalized() : own;
+        // A facet whose region faces away from it (only a badly misled sliver) keeps its own.
+        if (!(normals[i].dot(area_normal[i]) > 0)) normals[i] = own;
+    }
+    return normals;
+}
+
 // Angle at corner a of triangle (a, b, c).
 double corner_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
     const Eigen::Vector3d u = b - a, v = c - a;
@@ -34,15 +120,18 @@ void add_facets_3d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& 
             hull.facets.push_back(facet);
         }
     }
-    for (const HullFacet& f : hull.facets) {
+    // Angle-weighted means of the facets' flat-region normals (see flat_region_normals), with
+    // slivers weighted down by their shape: a sliver's middle corner is nearly a straight angle.
+    const std::vector<Eigen::Vector3d> region = flat_region_normals(hull, p);
+    for (size_t i = 0; i < hull.facets.size(); ++i) {
+        const HullFacet& f = hull.facets[i];
         const uint32_t a = f.probes[0], b = f.probes[1], d = f.probes[2];
-        const Eigen::Vector3d normal = (p[b] - p[a]).cross(p[d] - p[a]);
-        const double length = normal.norm();
-        if (!(length > 0)) continue;  // a zero-area facet has no direction to contribute
-        const Eigen::Vector3d unit = normal / length;
-        hull.vertex_normals[a] += corner_angle(p[a], p[b], p[d]) * unit;
-        hull.vertex_normals[b] += corner_angle(p[b], p[d], p[a]) * unit;
-        hull.vertex_normals[d] += corner_angle(p[d], p[a], p[b]) * unit;
+        const double shape = facet_shape(p[a], p[b], p[d]);
+        if (!(shape > 0)) continue;  // a zero-area facet has no direction to contribute
+        const double weight = std::min(1.0, shape / kSliverShape);
+        hull.vertex_normals[a] += weight * corner_angle(p[a], p[b], p[d]) * region[i];
+        hull.vertex_normals[b] += weight * corner_angle(p[b], p[d], p[a]) * region[i];
+        hull.vertex_normals[d] += weight * corner_angle(p[d], p[a], p[b]) * region[i];
     }
 }
 

@@ -242,13 +242,24 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     groups.group = groups.kept;
     SetShape shape = merge_and_detect(local, rank, diagonal, settings, groups);
 
-    // A flat (line) set is stored on its fitted plane (line): the queries' extrusion across the plane
-    // is then the orthogonal projection every later stage and the run time assume. A set already on
-    // it keeps its coordinates, so that probes exactly collinear stay so (and exact at queries).
+    // A flat (line) set is stored on its fitted plane (line), each probe moved along the axis the run
+    // time drops (plane) or across the axis it keeps (line): the coordinates a query is decided in
+    // stay exactly the probe's own, so a query at an input probe still weighs it exactly 1. A set
+    // already on it keeps its coordinates, so that probes exactly collinear stay so.
     const double off_set = shape.dimension == 1 ? shape.line_distance : shape.plane_distance;
     if ((shape.dimension == 1 || shape.dimension == 2) && off_set > kOnSetTolerance * diagonal) {
+        const Eigen::Vector3d normal = shape.axes.col(2), direction = shape.axes.col(0);
+        const uint32_t dropped = shape.dropped_axis(), along = shape.line_axis();
         for (uint32_t i : groups.kept) {
-            const Eigen::Vector3d on_set = shape.centre + shape.axes * shape.reduce(local[i]);
+            Eigen::Vector3d on_set = local[i];
+            if (shape.dimension == 2) {
+                // The point with the same kept coordinates on the plane n . (x - centre) = 0.
+                on_set[dropped] = shape.centre[dropped];
+                on_set[dropped] -= normal.dot(on_set - shape.centre) / normal[dropped];
+            } else {
+                on_set = shape.centre + direction * ((local[i][along] - shape.centre[along]) / direction[along]);
+                on_set[along] = local[i][along];
+            }
             for (int a = 0; a < 3; ++a) local[i][a] = double(float(on_set[a]));
         }
     }

@@ -250,6 +250,7 @@ struct OuterView {
     bool judged = false;  // weights are available (at that t, or at the guess when no t exists)
     double t = 0;
     double weights[3] = {0, 0, 0};  // over slots 0..d-1
+    bool turned_over = false;       // the moved facet at t is mirrored
 };
 
 // The point in the frame the outer cells are judged in: the store's local frame, or for a flat
@@ -334,15 +335,27 @@ OuterView view_outer_cell(const Cells<Index>& cells, uint32_t cell, const float 
         else
             triangle_weights(corner[0] + t * normal[0], corner[1] + t * normal[1], corner[2] + t * normal[2], p, w);
         if (!all_finite(w, d)) continue;
-        const double score = minimum(w, d);
-        if (score > best_score) {
+        // A moved facet that has turned over (a sliver's, whose probes' normals diverge) holds
+        // nothing there: its weights would mirror the facet's.
+        bool kept = true;
+        if (d == 3) {
+            const Vec3 facet = cross(corner[1] - corner[0], corner[2] - corner[0]);
+            const Vec3 moved = cross((corner[1] + t * normal[1]) - (corner[0] + t * normal[0]),
+                                     (corner[2] + t * normal[2]) - (corner[0] + t * normal[0]));
+            kept = dot(moved, facet) > 0;
+        } else {
+            kept = dot((corner[1] + t * normal[1]) - (corner[0] + t * normal[0]), corner[1] - corner[0]) > 0;
+        }
+        const double score = kept ? minimum(w, d) : -std::numeric_limits<double>::infinity();
+        if (!v.judged || score > best_score) {
             best_score = score;
             v.judged = true;
             v.t = t;
             for (uint32_t k = 0; k < d; ++k) v.weights[k] = w[k];
+            v.turned_over = !kept;
         }
     }
-    v.holds = v.holds && v.judged;
+    v.holds = v.holds && v.judged && !v.turned_over;
     return v;
 }
 
@@ -396,25 +409,55 @@ int outer_exit_slot(const Cells<Index>& cells, uint32_t cell, const double* w, u
     return best >= 0 ? best : back;
 }
 
-// Answers with the outer cell that holds the query best among the one the walk accepted and its outer
-// neighbours (largest smallest weight, ties to the lower index). Where two neighbouring sweeps
-// overlap, or leave a gap within the tolerance, both cells then give the same answer, so the result
-// does not depend on which one the walk reached first (the exhaustive search uses the same rule).
+// Choosing among outer cells that hold the query (within the tolerance): the sweep that reaches it
+// first, give or take a factor 2 in t (a degenerate cubic can also put the query inside a moved
+// facet at an absurd t, such as 1e15), and among those the one holding it best (largest smallest
+// weight), ties to the lower index. The walk applies it to the cell it accepted and that cell's
+// outer neighbours, the exhaustive search to every outer cell, so that where neighbouring sweeps
+// overlap (or leave a gap within the tolerance) the answer does not depend on the start.
+struct OuterChoice {
+    uint32_t cell = 0xFFFFFFFFu;
+    OuterView view;
+    double score = -std::numeric_limits<double>::infinity();
+};
+
+template <class Index>
+OuterChoice choose_outer(const Cells<Index>& cells, const uint32_t* candidates, uint32_t count, const float q[3]) {
+    const uint32_t d = cells.s.dimension;
+    double first_t = std::numeric_limits<double>::infinity();
+    for (int pass = 0; pass < 2; ++pass) {
+        OuterChoice best;
+        for (uint32_t i = 0; i < count; ++i) {
+            const uint32_t cell = candidates[i];
+            const OuterView v = view_outer_cell(cells, cell, q, -1.0);
+            if (!v.beyond || !v.holds) continue;
+            const double score = minimum(v.weights, d);
+            if (score < -kOuterWeightTolerance) continue;
+            if (pass == 0) {
+                first_t = v.t < first_t ? v.t : first_t;
+                continue;
+            }
+            if (v.t > 2 * first_t + 1e-300) continue;
+            if (score > best.score || (score == best.score && cell < best.cell)) best.cell = cell, best.view = v, best.score = score;
+        }
+        if (pass == 1) return best;
+    }
+    return OuterChoice{};
+}
+
 template <class Index>
 void settle_outer_cell(const Cells<Index>& cells, uint32_t cell, const OuterView& o, const float q[3], Location& loc) {
-    const uint32_t d = cells.s.dimension;
-    uint32_t best = cell;
-    OuterView best_view = o;
-    double best_score = minimum(o.weights, d);
-    for (uint32_t k = 0; k < d; ++k) {
+    uint32_t candidates[4] = {cell};
+    uint32_t count = 1;
+    for (uint32_t k = 0; k < cells.s.dimension; ++k) {
         const uint32_t n = cells.neighbour(cell, k);
-        if (n == kNoCell || n < cells.s.inner_cell_count) continue;
-        const OuterView v = view_outer_cell(cells, n, q, -1.0);
-        if (!v.beyond || !v.holds) continue;
-        const double score = minimum(v.weights, d);
-        if (score > best_score || (score == best_score && n < best)) best = n, best_view = v, best_score = score;
+        if (n != kNoCell && n >= cells.s.inner_cell_count) candidates[count++] = n;
     }
-    set_outer_weights(cells, best, best_view, loc);
+    const OuterChoice best = choose_outer(cells, candidates, count, q);
+    if (best.cell == 0xFFFFFFFFu)
+        set_outer_weights(cells, cell, o, loc);  // accepted by the walk on its own weights
+    else
+        set_outer_weights(cells, best.cell, best.view, loc);
 }
 
 template <class Index>
@@ -436,14 +479,39 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
             return loc;
         }
     }
-    double best_score = -std::numeric_limits<double>::infinity();
-    for (uint32_t cell = s.inner_cell_count; cell < s.cell_count; ++cell) {
-        const OuterView o = view_outer_cell(cells, cell, q, -1.0);
-        if (!o.beyond || !o.holds) continue;
-        const double score = minimum(o.weights, s.dimension);
-        if (score > best_score) {
-            best_score = score;
-            set_outer_weights(cells, cell, o, loc);
+    // Cells holding the query within the tolerance decide (choose_outer); failing those, the cell
+    // holding it best.
+    OuterChoice best;
+    {
+        double first_t = std::numeric_limits<double>::infinity();
+        for (int pass = 0; pass < 2 && best.cell == 0xFFFFFFFFu; ++pass) {
+            for (uint32_t cell = s.inner_cell_count; cell < s.cell_count; ++cell) {
+                const OuterView o = view_outer_cell(cells, cell, q, -1.0);
+                if (!o.beyond || !o.holds) continue;
+                const double score = minimum(o.weights, s.dimension);
+                if (score < -kOuterWeightTolerance) continue;
+                if (pass == 0) {
+                    first_t = o.t < first_t ? o.t : first_t;
+                    continue;
+                }
+                if (o.t > 2 * first_t + 1e-300) continue;
+                if (score > best.score) best.cell = cell, best.view = o, best.score = score;
+            }
+            if (pass == 0 && first_t == std::numeric_limits<double>::infinity()) break;
+        }
+    }
+    if (best.cell != 0xFFFFFFFFu) {
+        set_outer_weights(cells, best.cell, best.view, loc);
+    } else {
+        double best_score = -std::numeric_limits<double>::infinity();
+        for (uint32_t cell = s.inner_cell_count; cell < s.cell_count; ++cell) {
+            const OuterView o = view_outer_cell(cells, cell, q, -1.0);
+            if (!o.beyond || !o.holds) continue;
+            const double score = minimum(o.weights, s.dimension);
+            if (score > best_score) {
+                best_score = score;
+                set_outer_weights(cells, cell, o, loc);
+            }
         }
     }
     if (loc.cell < 0 && !outer_only) {
