@@ -23,6 +23,9 @@ namespace {
 
 constexpr uint32_t kNoCell = 0xFFFFFFFFu;
 constexpr uint32_t kRecentOuterCells = 8;
+// Roots of an outer cell's polynomial beyond this many times the query's distance from the facet
+// are ignored (see view_outer_cell).
+constexpr double kMaxRootRatio = 1e6;
 // Bound of the 2D permanent below: 2 products of the largest |differences|, with room for the
 // rounding of that bound itself (the 3D one is in tetrahedron_orientations.h).
 constexpr double kOrient2dBoundScale = 2.000001 * kOrient2dErrorFactor;
@@ -263,6 +266,20 @@ Vec3 judged_point(const Cells<Index>& cells, const float p[3]) {
     return {uv[0], uv[1], 0.0};
 }
 
+// Distance from the query to the centroid of an outer cell's hull facet: roughly the t of its
+// moved facet (probes move at unit speed along their normals).
+template <class Index>
+double facet_distance(const Cells<Index>& cells, uint32_t cell, const float q[3]) {
+    const uint32_t d = cells.s.dimension;
+    Vec3 centroid{0, 0, 0};
+    for (uint32_t k = 0; k < d; ++k) {
+        const float* p = cells.position(cells.vertex(cell, k));
+        centroid = centroid + Vec3{p[0], p[1], p[2]};
+    }
+    const Vec3 offset = Vec3{q[0], q[1], q[2]} - (1.0 / double(d)) * centroid;
+    return std::sqrt(dot(offset, offset));
+}
+
 // guess_t (>= 0, or negative for none): where to judge the query when no t >= 0 exists, only to
 // choose the way out.
 template <class Index>
@@ -319,8 +336,11 @@ OuterView view_outer_cell(const Cells<Index>& cells, uint32_t cell, const float 
     int count = 0;
     double roots[3];
     const int n = cubic_real_roots(c[0], c[1], c[2], c[3], roots);
+    // A root a million times farther out than the query is from the facet is the rounding of a
+    // nearly vanishing leading coefficient (nearly parallel normals), not where the sweep meets it.
+    const double farthest = kMaxRootRatio * facet_distance(cells, cell, q);
     for (int i = 0; i < n; ++i)
-        if (roots[i] >= 0) candidates[count++] = roots[i];
+        if (roots[i] >= 0 && roots[i] <= farthest) candidates[count++] = roots[i];
     v.holds = count > 0;
     if (!v.holds) {
         if (!(guess_t >= 0)) return v;
@@ -357,20 +377,6 @@ OuterView view_outer_cell(const Cells<Index>& cells, uint32_t cell, const float 
     }
     v.holds = v.holds && v.judged && !v.turned_over;
     return v;
-}
-
-// Distance from the query to the centroid of an outer cell's hull facet: roughly the t of its
-// moved facet (probes move at unit speed along their normals).
-template <class Index>
-double facet_distance(const Cells<Index>& cells, uint32_t cell, const float q[3]) {
-    const uint32_t d = cells.s.dimension;
-    Vec3 centroid{0, 0, 0};
-    for (uint32_t k = 0; k < d; ++k) {
-        const float* p = cells.position(cells.vertex(cell, k));
-        centroid = centroid + Vec3{p[0], p[1], p[2]};
-    }
-    const Vec3 offset = Vec3{q[0], q[1], q[2]} - (1.0 / double(d)) * centroid;
-    return std::sqrt(dot(offset, offset));
 }
 
 // Weights of an outer cell: negatives clamped to zero, renormalised to sum 1.
@@ -412,9 +418,10 @@ int outer_exit_slot(const Cells<Index>& cells, uint32_t cell, const double* w, u
 // Choosing among outer cells that hold the query (within the tolerance): the sweep that reaches it
 // first, give or take a factor 2 in t (a degenerate cubic can also put the query inside a moved
 // facet at an absurd t, such as 1e15), and among those the one holding it best (largest smallest
-// weight), ties to the lower index. The walk applies it to the cell it accepted and that cell's
-// outer neighbours, the exhaustive search to every outer cell, so that where neighbouring sweeps
-// overlap (or leave a gap within the tolerance) the answer does not depend on the start.
+// weight), ties to the lower index. The walk applies it to a cell it accepted only within the
+// tolerance and that cell's outer neighbours, the exhaustive search to every outer cell, so that in
+// a gap between neighbouring sweeps the answer does not depend on the start. (Where sweeps overlap,
+// which only converging normals make, the walk answers with the first cell that holds the query.)
 struct OuterChoice {
     uint32_t cell = 0xFFFFFFFFu;
     OuterView view;
@@ -424,25 +431,23 @@ struct OuterChoice {
 template <class Index>
 OuterChoice choose_outer(const Cells<Index>& cells, const uint32_t* candidates, uint32_t count, const float q[3]) {
     const uint32_t d = cells.s.dimension;
+    OuterView views[4];
     double first_t = std::numeric_limits<double>::infinity();
-    for (int pass = 0; pass < 2; ++pass) {
-        OuterChoice best;
-        for (uint32_t i = 0; i < count; ++i) {
-            const uint32_t cell = candidates[i];
-            const OuterView v = view_outer_cell(cells, cell, q, -1.0);
-            if (!v.beyond || !v.holds) continue;
-            const double score = minimum(v.weights, d);
-            if (score < -kOuterWeightTolerance) continue;
-            if (pass == 0) {
-                first_t = v.t < first_t ? v.t : first_t;
-                continue;
-            }
-            if (v.t > 2 * first_t + 1e-300) continue;
-            if (score > best.score || (score == best.score && cell < best.cell)) best.cell = cell, best.view = v, best.score = score;
-        }
-        if (pass == 1) return best;
+    for (uint32_t i = 0; i < count; ++i) {
+        views[i] = view_outer_cell(cells, candidates[i], q, -1.0);
+        const OuterView& v = views[i];
+        if (v.beyond && v.holds && minimum(v.weights, d) >= -kOuterWeightTolerance && v.t < first_t) first_t = v.t;
     }
-    return OuterChoice{};
+    OuterChoice best;
+    for (uint32_t i = 0; i < count; ++i) {
+        const OuterView& v = views[i];
+        if (!v.beyond || !v.holds || v.t > 2 * first_t + 1e-300) continue;
+        const double score = minimum(v.weights, d);
+        if (score < -kOuterWeightTolerance) continue;
+        const uint32_t cell = candidates[i];
+        if (score > best.score || (score == best.score && cell < best.cell)) best.cell = cell, best.view = v, best.score = score;
+    }
+    return best;
 }
 
 template <class Index>
@@ -602,7 +607,13 @@ Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
                 if (!o.judged) break;
                 if (o.holds) {
                     last_t = o.t;
-                    if (minimum(o.weights, s.dimension) >= -kOuterWeightTolerance) {
+                    const double score = minimum(o.weights, s.dimension);
+                    if (score >= 0) {  // holds it: on a shared edge, the neighbour's weights are the same
+                        set_outer_weights(cells, cell, o, loc);
+                        loc.steps = steps;
+                        return loc;
+                    }
+                    if (score >= -kOuterWeightTolerance) {  // in a gap between sweeps, within the tolerance
                         settle_outer_cell(cells, cell, o, q, loc);
                         loc.steps = steps;
                         return loc;
