@@ -6,6 +6,7 @@
 // The checks here read only positions and cells, and decide every sign with TetGen's exact
 // predicates (not the builder's own filtered ones), so they referee the builder independently.
 #include "probe_families.h"
+#include "store_structure.h"
 
 #include "bake/delaunay.h"
 #include "bake/probe_merge.h"
@@ -116,25 +117,6 @@ double cell_measure(const StoreData& d, uint32_t c) {
     return d.dimension == 1 ? v[1][d.axis] - v[0][d.axis] : 0;
 }
 
-// Counts failed conditions over a loop and keeps the first one's text, so that checking every cell
-// costs one Catch assertion, not millions.
-struct Failures {
-    std::string first;
-    size_t count = 0;
-    void report(const char* what) const {
-        INFO(what << ": " << count << " failures, the first: " << first);
-        REQUIRE(count == 0);
-    }
-};
-#define BUILDER_CHECK(failures, condition, context)                          \
-    do {                                                                     \
-        if (!(condition) && (failures).count++ == 0) {                       \
-            std::ostringstream what_;                                        \
-            what_ << #condition << " (" << context << ")";                   \
-            (failures).first = what_.str();                                  \
-        }                                                                    \
-    } while (0)
-
 std::multiset<uint32_t> facet_without(const StoreData& d, uint32_t cell, uint32_t slot) {
     std::multiset<uint32_t> facet;
     for (uint32_t k = 0; k <= d.dimension; ++k)
@@ -170,70 +152,70 @@ StoreFacts check_store(const StoreData& d) {
     if (dim == 0) REQUIRE(cells == 1);
     if (!extrapolates || dim == 0) REQUIRE(cells == inner);
 
-    Failures f;
-    for (uint32_t i = 0; i < d.input_probe_count; ++i) BUILDER_CHECK(f, d.input_remap[i] < probes, "input " << i);
+    structure::Failures f;
+    for (uint32_t i = 0; i < d.input_probe_count; ++i) STRUCTURE_CHECK(f, d.input_remap[i] < probes, "input " << i);
     for (uint32_t j = 0; j < probes; ++j)
-        BUILDER_CHECK(f, d.probe_source[j] < d.input_probe_count && d.input_remap[d.probe_source[j]] == j, "probe " << j);
+        STRUCTURE_CHECK(f, d.probe_source[j] < d.input_probe_count && d.input_remap[d.probe_source[j]] == j, "probe " << j);
     f.report("remaps");
 
     StoreFacts facts;
     std::vector<char> used(probes, 0);
-    Failures slots, orientation, links, winding;
+    structure::Failures slots, orientation, links, winding;
     for (uint32_t c = 0; c < cells; ++c) {
         const bool is_inner = c < inner;
         for (uint32_t k = 0; k < 4; ++k) {
             const uint32_t v = vertex(d, c, k), n = neighbour(d, c, k);
             if (k > dim) {
-                BUILDER_CHECK(slots, v == kNone32 && n == kNone32, "cell " << c << " slot " << k);
+                STRUCTURE_CHECK(slots, v == kNone32 && n == kNone32, "cell " << c << " slot " << k);
             } else if (k == dim && !is_inner) {
-                BUILDER_CHECK(slots, v == kOuter32 && n < inner, "outer cell " << c);
+                STRUCTURE_CHECK(slots, v == kOuter32 && n < inner, "outer cell " << c);
             } else {
-                BUILDER_CHECK(slots, v < probes, "cell " << c << " slot " << k);
+                STRUCTURE_CHECK(slots, v < probes, "cell " << c << " slot " << k);
                 if (v < probes && is_inner) used[v] = 1;
             }
         }
         if (is_inner && dim >= 1) {
             const int o = cell_orientation(d, c);
-            BUILDER_CHECK(orientation, o >= 0, "cell " << c);
+            STRUCTURE_CHECK(orientation, o >= 0, "cell " << c);
             facts.flat_cells += o == 0;
         }
         // Links: n across the facet opposite slot k, and n links back across the same facet.
         for (uint32_t k = 0; k <= dim && dim >= 1; ++k) {
             const uint32_t n = neighbour(d, c, k);
             if (n == kNone32) {
-                BUILDER_CHECK(links, (is_inner && (!extrapolates || dim == 0)) || (!is_inner && dim == 1 && k == 0),
+                STRUCTURE_CHECK(links, (is_inner && (!extrapolates || dim == 0)) || (!is_inner && dim == 1 && k == 0),
                               "cell " << c << " slot " << k << " has no neighbour");
                 continue;
             }
-            BUILDER_CHECK(links, n < cells, "cell " << c << " slot " << k);
+            STRUCTURE_CHECK(links, n < cells, "cell " << c << " slot " << k);
             if (n >= cells) continue;
             uint32_t back = 4;
             for (uint32_t m = 0; m <= dim; ++m)
                 if (neighbour(d, n, m) == c) back = m;
-            BUILDER_CHECK(links, back <= dim, "cell " << c << " slot " << k << " -> " << n << " does not link back");
+            STRUCTURE_CHECK(links, back <= dim, "cell " << c << " slot " << k << " -> " << n << " does not link back");
             if (back > dim) continue;
             if (is_inner && n < inner) {
-                BUILDER_CHECK(links, facet_without(d, c, k) == facet_without(d, n, back), "inner " << c << "/" << n);
+                STRUCTURE_CHECK(links, facet_without(d, c, k) == facet_without(d, n, back), "inner " << c << "/" << n);
             } else if (is_inner) {
-                BUILDER_CHECK(links, back == dim && facet_without(d, c, k) == facet_without(d, n, dim), "hull " << c);
+                STRUCTURE_CHECK(links, back == dim && facet_without(d, c, k) == facet_without(d, n, dim), "hull " << c);
                 // Outward winding: the inner cell's vertex opposite the facet is on the negative side.
                 Vec P[3];
                 for (uint32_t m = 0; m < dim; ++m) P[m] = position(d, vertex(d, n, m));
                 const Vec x = position(d, vertex(d, c, k));
-                if (dim == 3) BUILDER_CHECK(winding, orient3d(P[0], P[1], P[2], x) <= 0, "outer " << n);
-                if (dim == 3 && facts.flat_cells == 0) BUILDER_CHECK(winding, orient3d(P[0], P[1], P[2], x) < 0, "outer " << n);
-                if (dim == 2) BUILDER_CHECK(winding, orient2d(d, P[0], P[1], x) <= 0, "outer " << n);
+                if (dim == 3) STRUCTURE_CHECK(winding, orient3d(P[0], P[1], P[2], x) <= 0, "outer " << n);
+                if (dim == 3 && facts.flat_cells == 0) STRUCTURE_CHECK(winding, orient3d(P[0], P[1], P[2], x) < 0, "outer " << n);
+                if (dim == 2) STRUCTURE_CHECK(winding, orient2d(d, P[0], P[1], x) <= 0, "outer " << n);
                 if (dim == 1) {
                     // Slot 0 is the end probe; the inner cell's other probe lies the other way along the axis.
                     const uint32_t end = vertex(d, n, 0);
-                    BUILDER_CHECK(winding, end == vertex(d, c, 1 - k), "outer " << n);
+                    STRUCTURE_CHECK(winding, end == vertex(d, c, 1 - k), "outer " << n);
                     const Vec ray = normal(d, end);
-                    BUILDER_CHECK(winding, ray.dot(position(d, end) - x) > 0, "outer " << n);
+                    STRUCTURE_CHECK(winding, ray.dot(position(d, end) - x) > 0, "outer " << n);
                 }
             } else if (n >= inner) {
                 // Outer neighbours share d - 1 probes: the facets without the slot each one links by.
                 std::multiset<uint32_t> a = facet_without(d, c, k), b = facet_without(d, n, back);
-                BUILDER_CHECK(links, k < dim && back < dim && a == b, "outer " << c << "/" << n);
+                STRUCTURE_CHECK(links, k < dim && back < dim && a == b, "outer " << c << "/" << n);
             }
         }
     }
@@ -248,10 +230,10 @@ StoreFacts check_store(const StoreData& d) {
         std::vector<char> on_hull(probes, 0);
         for (uint32_t c = inner; c < cells; ++c)
             for (uint32_t k = 0; k < dim; ++k) on_hull[vertex(d, c, k)] = 1;
-        Failures normals;
+        structure::Failures normals;
         for (uint32_t j = 0; j < probes; ++j) {
             const double length = normal(d, j).norm();
-            BUILDER_CHECK(normals, on_hull[j] ? std::fabs(length - 1) < 1e-6 : length == 0, "probe " << j);
+            STRUCTURE_CHECK(normals, on_hull[j] ? std::fabs(length - 1) < 1e-6 : length == 0, "probe " << j);
         }
         normals.report("hull normals");
     }
@@ -280,12 +262,12 @@ StoreFacts check_store(const StoreData& d) {
                 facets.push_back(facet);
             }
         }
-        Failures convex;
+        structure::Failures convex;
         for (const auto& facet : facets)
             for (uint32_t j = 0; j < probes; ++j) {
                 const int side = dim == 3 ? orient3d(facet[0], facet[1], facet[2], position(d, j))
                                           : orient2d(d, facet[0], facet[1], position(d, j));
-                BUILDER_CHECK(convex, side <= 0, "probe " << j << " beyond a hull facet");
+                STRUCTURE_CHECK(convex, side <= 0, "probe " << j << " beyond a hull facet");
             }
         convex.report("the inner cells' boundary is the convex hull");
         INFO("inner cells " << tiled << ", enclosed by their boundary " << enclosed);
@@ -293,12 +275,12 @@ StoreFacts check_store(const StoreData& d) {
     }
 
     // Grid entries: inner cells, holding their centre when some inner cell does (exactly).
-    Failures grid;
+    structure::Failures grid;
     for (uint32_t z = 0; z < d.grid[2]; ++z)
         for (uint32_t y = 0; y < d.grid[1]; ++y)
             for (uint32_t x = 0; x < d.grid[0]; ++x) {
                 const uint32_t g = d.grid_cells[(size_t(z) * d.grid[1] + y) * d.grid[0] + x];
-                BUILDER_CHECK(grid, g < inner, "grid " << x << "," << y << "," << z);
+                STRUCTURE_CHECK(grid, g < inner, "grid " << x << "," << y << "," << z);
             }
     grid.report("grid entries");
     return facts;
