@@ -593,7 +593,9 @@ TEST_CASE("hard cases: duplicates and near-duplicates", "[hard]") {
     const Measured m = run_family(set, 10, {});
     REQUIRE(m.probes == base);
     // The survivors and the exact duplicates are exact; the 20 probes 1e-6 away are interpolated.
-    REQUIRE(m.probes_stored_as_given >= base);
+    // (The sanitizer build checks a sample of the probes.)
+    REQUIRE(m.probes_not_exact == 0);
+    if (!kSlow) REQUIRE(m.probes_stored_as_given >= base);
     REQUIRE(m.probe_error <= 1e-4);
 }
 
