@@ -411,7 +411,7 @@ TEST_CASE("bake: culling shadow casters changes no byte of the result", "[bake]"
     CHECK(std::memcmp(culled.data(), unculled.data(), culled.size() * sizeof(float)) == 0);
 }
 
-TEST_CASE("bake: the same seed gives the same bytes with 1, 2 and 3 threads", "[bake]") {
+TEST_CASE("bake: the same seed gives the same bytes with 1, 2 and 3 threads", "[bake][threads]") {
     Scene scene = culling_scene();
     BakeSettings settings = quick(32, 2);
     std::vector<std::vector<float>> results;
