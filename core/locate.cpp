@@ -2,8 +2,10 @@
 // no facet's orientation with the query is negative; each orientation's sign is exact (a filtered
 // double evaluation, the exact one where the filter cannot decide), so the walk needs no tolerance:
 // on a Delaunay tessellation a walk that only steps across facets the point lies strictly beyond
-// terminates (Edelsbrunner's acyclicity theorem), never steps straight back, and ends in a cell
-// that holds the point. The weights are the orientations divided by their sum, so a query exactly at
+// terminates (Edelsbrunner's acyclicity theorem; TetGen's symbolic perturbation makes the
+// tessellation of a degenerate set a regular one, to which it applies too), never steps straight
+// back, and ends in a cell that holds the point. A flat cell (none was seen: TetGen is given the
+// stored floats themselves) hands a point on its plane to a neighbour. The weights are the orientations divided by their sum, so a query exactly at
 // a probe weighs that probe 1 and the others exactly 0. Outer cells solve their polynomial in double
 // and judge the moved hull facet's weights; where their sweeps disagree far out, the outer cells are
 // searched exhaustively.
