@@ -28,12 +28,13 @@ sanitize: deps
 	ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  ctest --test-dir $(BUILD)-asan --output-on-failure -j $(JOBS) -L 'unit|c'
 
-# ThreadSanitizer: the tests that query one store from many threads, the batches on threads, and
-# the multi-threaded bake (Embree's own thread pool is suppressed by name in tests/tsan.supp).
+# ThreadSanitizer: both shared libraries link under it, and the tests that query one store from many
+# threads, the batches on threads and the multi-threaded bake run under it (Embree's own thread pool
+# is suppressed by name in tests/tsan.supp).
 tsan: deps
 	cmake -S . -B $(BUILD)-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETPROBE_TSAN=ON \
 	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
-	cmake --build $(BUILD)-tsan -j $(JOBS) --target tetprobe_tests
+	cmake --build $(BUILD)-tsan -j $(JOBS) --target tetprobe tetprobe_runtime tetprobe_tests
 	TSAN_OPTIONS="halt_on_error=1 suppressions=$(CURDIR)/tests/tsan.supp" \
 	  $(BUILD)-tsan/tests/tetprobe_tests "[threads]"
 
