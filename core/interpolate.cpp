@@ -28,7 +28,7 @@ T* strided(T* base, size_t i, size_t stride) {
 
 // Queries located before any is answered: their walks are independent, so the processor overlaps
 // them, and the cells of the group after next are prefetched.
-constexpr size_t kGroup = 8;
+constexpr size_t kGroup = kMaxGroup;
 
 // Runs the queries [begin, end) in groups: locate each (reading and writing the hints), then hand
 // every location to answer(i, loc). Returns the first index that was outside (or end).
@@ -48,15 +48,26 @@ size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* po
                 prefetch_cell(s, hint);
             }
         }
+        float q[kGroup][3];
+        int32_t start[kGroup];
         for (size_t j = 0; j < count; ++j) {
             const size_t i = group + j;
-            float world[3], q[3];
+            float world[3];
             std::memcpy(world, strided(positions, i, position_stride), sizeof world);
-            local_position(s, world, q);
-            int32_t hint = chain_hints ? chained : -1;
-            if (hints) std::memcpy(&hint, strided(hints, i, hint_stride), sizeof hint);
-            located[j] = locate_local(s, q, hint);
-            chained = located[j].cell;
+            local_position(s, world, q[j]);
+            start[j] = -1;
+            if (hints) std::memcpy(&start[j], strided(hints, i, hint_stride), sizeof start[j]);
+        }
+        if (hints || !chain_hints) {
+            locate_group(s, count, q, start, located);
+        } else {  // each query starts where the previous one ended: one after the other
+            for (size_t j = 0; j < count; ++j) {
+                located[j] = locate_local(s, q[j], chained);
+                chained = located[j].cell;
+            }
+        }
+        for (size_t j = 0; j < count; ++j) {
+            const size_t i = group + j;
             if (hints) std::memcpy(strided(hints, i, hint_stride), &located[j].cell, sizeof located[j].cell);
             if (located[j].status != Status::ok && first_outside == end) first_outside = i;
         }

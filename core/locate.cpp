@@ -530,18 +530,25 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
     return loc;
 }
 
+template <class Index>
+Location walk(const Store::Impl& s, const float q[3], int32_t hint);
+
 #define TP_WALK_CLEAR_NAME walk_clear_portable
+#define TP_LOCATE_GROUP_NAME locate_group_portable
 #define TP_WALK_CLEAR_KERNEL ScalarOrientations
 #include "core/walk_clear.inl"
 #undef TP_WALK_CLEAR_NAME
+#undef TP_LOCATE_GROUP_NAME
 #undef TP_WALK_CLEAR_KERNEL
 #ifdef TETPROBE_X86_64
 #pragma GCC push_options
 #pragma GCC target("avx2")
 #define TP_WALK_CLEAR_NAME walk_clear_avx2
+#define TP_LOCATE_GROUP_NAME locate_group_avx2
 #define TP_WALK_CLEAR_KERNEL Avx2Orientations
 #include "core/walk_clear.inl"
 #undef TP_WALK_CLEAR_NAME
+#undef TP_LOCATE_GROUP_NAME
 #undef TP_WALK_CLEAR_KERNEL
 #pragma GCC pop_options
 #endif
@@ -643,6 +650,30 @@ Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
 }
 
 }  // namespace
+
+namespace {
+template <class Index>
+void locate_group_typed(const Store::Impl& s, size_t count, const float (*q)[3], const int32_t* hints,
+                        Location* out) {
+    const Cells<Index> cells(s);
+    if (s.dimension != 3) {
+        for (size_t i = 0; i < count; ++i) out[i] = walk<Index>(s, q[i], hints[i]);
+        return;
+    }
+#ifdef TETPROBE_X86_64
+    if (s.avx2) return locate_group_avx2(cells, count, q, hints, out);
+#endif
+    locate_group_portable(cells, count, q, hints, out);
+}
+}  // namespace
+
+void locate_group(const Store::Impl& store, size_t count, const float (*local)[3], const int32_t* hints,
+                  Location* out) {
+    if (store.index32)
+        locate_group_typed<uint32_t>(store, count, local, hints, out);
+    else
+        locate_group_typed<uint16_t>(store, count, local, hints, out);
+}
 
 Location locate_local(const Store::Impl& store, const float local[3], int32_t hint) {
     return store.index32 ? walk<uint32_t>(store, local, hint) : walk<uint16_t>(store, local, hint);

@@ -20,6 +20,12 @@ inline void local_position(const Store::Impl& store, const float world[3], float
 // Finds the cell holding a local position, starting from hint (-1 or out of range: the grid).
 Location locate_local(const Store::Impl& store, const float local[3], int32_t hint);
 
+// Up to kMaxGroup queries at once (a batch's): the same answers as locate_local on each, their
+// first tests overlapped.
+constexpr size_t kMaxGroup = 8;
+void locate_group(const Store::Impl& store, size_t count, const float (*local)[3], const int32_t* hints,
+                  Location* out);
+
 // Asks the memory system early for what a walk from cell will read first: the cell's record and its
 // vertices' positions (a batch calls it a few queries ahead, so that queries overlap their misses).
 void prefetch_cell(const Store::Impl& store, int32_t cell);

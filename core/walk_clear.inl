@@ -44,3 +44,39 @@ __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Index>& cells, uin
     *cell = c;
     return false;
 }
+
+// Several queries' first tests at once: their start cells' orientations computed back to back, so
+// that the processor overlaps their independent load and arithmetic chains; a query whose start cell
+// holds it clearly is answered here, the others walk on their own (walk<Index>).
+template <class Index>
+__attribute__((noinline)) void TP_LOCATE_GROUP_NAME(const Cells<Index>& cells, size_t count, const float (*q)[3],
+                                                    const int32_t* hints, Location* out) {
+    const Store::Impl& s = cells.s;
+    Orientations o[kMaxGroup];
+    const CellRecord<Index>* records[kMaxGroup];
+    for (size_t i = 0; i < count; ++i) {
+        records[i] = nullptr;
+        if (hints[i] < 0 || uint32_t(hints[i]) >= s.inner_cell_count) continue;
+        const CellRecord<Index>& r = cells.records[hints[i]];
+        const float* const P[4] = {cells.position(r.vertices[0]), cells.position(r.vertices[1]),
+                                   cells.position(r.vertices[2]), cells.position(r.vertices[3])};
+        o[i] = TP_WALK_CLEAR_KERNEL::of(P, q[i]);
+        records[i] = &r;
+    }
+    for (size_t i = 0; i < count; ++i) {
+        const double* D = o[i].D;
+        const double bound = o[i].bound;
+        if (records[i] && (D[0] > bound) & (D[1] > bound) & (D[2] > bound) & (D[3] > bound)) {
+            const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
+            Location& loc = out[i];
+            loc = Location();
+            loc.cell = hints[i];
+            for (int k = 0; k < 4; ++k) {
+                loc.probes[k] = records[i]->vertices[k];
+                loc.weights[k] = float(D[k] * scale);
+            }
+        } else {
+            out[i] = walk<Index>(s, q[i], hints[i]);
+        }
+    }
+}
