@@ -52,43 +52,6 @@ inline Built build(const families::ProbeSet& set, uint32_t flags, double merge_t
     return b;
 }
 
-// A uniformly random rotation (unit quaternion from three uniforms, Shoemake), as a row-major 3x3.
-struct Rotation {
-    double m[3][3];
-};
-inline Rotation random_rotation(uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> u(0, 1);
-    const double u1 = u(rng), u2 = u(rng), u3 = u(rng), kTwoPi = 6.283185307179586;
-    const double a = std::sqrt(1 - u1) * std::sin(kTwoPi * u2), b = std::sqrt(1 - u1) * std::cos(kTwoPi * u2);
-    const double c = std::sqrt(u1) * std::sin(kTwoPi * u3), w = std::sqrt(u1) * std::cos(kTwoPi * u3);
-    const double x = a, y = b, z = c;
-    Rotation r;
-    r.m[0][0] = 1 - 2 * (y * y + z * z), r.m[0][1] = 2 * (x * y - z * w), r.m[0][2] = 2 * (x * z + y * w);
-    r.m[1][0] = 2 * (x * y + z * w), r.m[1][1] = 1 - 2 * (x * x + z * z), r.m[1][2] = 2 * (y * z - x * w);
-    r.m[2][0] = 2 * (x * z - y * w), r.m[2][1] = 2 * (y * z + x * w), r.m[2][2] = 1 - 2 * (x * x + y * y);
-    return r;
-}
-
-// An n^3 integer lattice (spacing 1, centred on the origin), rotated in double, shifted by offset,
-// rounded to float.
-inline families::ProbeSet rotated_lattice(int n, uint32_t seed, double spacing = 1, double offset = 0) {
-    const Rotation r = random_rotation(seed);
-    families::ProbeSet s{"lattice " + std::to_string(n) + "^3 rotated (seed " + std::to_string(seed) + ", spacing " +
-                             std::to_string(spacing) + ", offset " + std::to_string(offset) + ")",
-                         {}};
-    const double c = 0.5 * (n - 1);
-    for (int k = 0; k < n; ++k)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const double p[3] = {(i - c) * spacing, (j - c) * spacing, (k - c) * spacing};
-                double q[3];
-                for (int a = 0; a < 3; ++a) q[a] = offset + r.m[a][0] * p[0] + r.m[a][1] * p[1] + r.m[a][2] * p[2];
-                s.add(q[0], q[1], q[2]);
-            }
-    return s;
-}
-
 // An axis-aligned n^3 lattice of the given spacing at offset (every coordinate offset + k * spacing).
 inline families::ProbeSet offset_lattice(int n, double spacing, double offset) {
     families::ProbeSet s{"lattice " + std::to_string(n) + "^3, spacing " + std::to_string(spacing) + " at offset " +
@@ -97,17 +60,6 @@ inline families::ProbeSet offset_lattice(int n, double spacing, double offset) {
     for (int k = 0; k < n; ++k)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) s.add(offset + i * spacing, offset + j * spacing, offset + k * spacing);
-    return s;
-}
-
-// 300 probes in a 1 cm box at (100, 3, -50) inside 200 probes spread over a kilometre: the cluster
-// is 1e-5 of the set's extent wide.
-inline families::ProbeSet cluster_in_a_kilometre(uint32_t seed) {
-    families::ProbeSet s{"300 probes in 1 cm at (100, 3, -50) in a 1 km set (seed " + std::to_string(seed) + ")", {}};
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> wide(-500, 500), small(0, 0.01);
-    for (int i = 0; i < 200; ++i) s.add(wide(rng), wide(rng), wide(rng));
-    for (int i = 0; i < 300; ++i) s.add(100 + small(rng), 3 + small(rng), -50 + small(rng));
     return s;
 }
 

@@ -82,13 +82,13 @@ std::vector<ProbeSet> probe_exactness_sets() {
     const std::vector<int> sizes = kScale == 1 ? std::vector<int>{4, 5, 6, 8, 10, 12} : std::vector<int>{4, 8, 12};
     const int rotations = kScale == 1 ? 4 : 1;
     for (int n : sizes)
-        for (int r = 0; r < rotations; ++r) sets.push_back(exactness::rotated_lattice(n, 1000u * n + r));
+        for (int r = 0; r < rotations; ++r) sets.push_back(families::rotated_lattice(n, 1000u * n + r));
     sets.push_back(exactness::offset_lattice(8, 1.0 / 16, 1e6));
     sets.push_back(exactness::offset_lattice(6, 1.0 / 16, -1e6));
     // Rotated at 1e6: the float grid there is 1/16, so the rotated lattice is rounded to it.
-    sets.push_back(exactness::rotated_lattice(8, 77, 1.0, 1e6));
-    sets.push_back(exactness::cluster_in_a_kilometre(1));
-    if (kScale == 1) sets.push_back(exactness::cluster_in_a_kilometre(2));
+    sets.push_back(families::rotated_lattice(8, 77, 1e6));
+    sets.push_back(families::cluster_in_a_level(300, 0.01, 1));
+    if (kScale == 1) sets.push_back(families::cluster_in_a_level(300, 0.01, 2));
     sets.push_back(exactness::named(families::random_cloud(500, 11), "random cloud 500"));
     sets.push_back(exactness::named(families::random_cloud(400, 12, 10, 1e5), "random cloud 400 at 1e5"));
     sets.push_back(exactness::named(families::lattice(8, 8, 8, 1, 1e-7, 3), "lattice 8^3 jittered by float ulps"));
@@ -162,12 +162,12 @@ std::vector<ProbeSet> reference_sets() {
     sets.push_back(exactness::named(families::lattice(6, 6, 6), "lattice 6^3"));
     sets.push_back(exactness::named(families::lattice(6, 6, 6, 1, 1e-7, 4), "lattice 6^3 jittered by float ulps"));
     sets.push_back(exactness::named(families::lattice(7, 7, 7, 1, 1e-3, 5), "lattice 7^3 jittered by 1e-3"));
-    sets.push_back(exactness::rotated_lattice(6, 31));
-    sets.push_back(exactness::rotated_lattice(8, 32));
+    sets.push_back(families::rotated_lattice(6, 31));
+    sets.push_back(families::rotated_lattice(8, 32));
     sets.push_back(exactness::offset_lattice(6, 1.0 / 16, 1e6));
-    sets.push_back(exactness::cluster_in_a_kilometre(7));
+    sets.push_back(families::cluster_in_a_level(300, 0.01, 7));
     if (kScale == 1) {
-        sets.push_back(exactness::rotated_lattice(10, 33));
+        sets.push_back(families::rotated_lattice(10, 33));
         sets.push_back(exactness::named(families::slab(8, 0.05), "slab 8x8x3 squashed"));
     }
     return sets;
@@ -349,7 +349,7 @@ std::string describe_answer(const Answer& a) {
 
 TEST_CASE("the answers do not depend on the order the probes are given in", "[exact]") {
     const ProbeSet sets[] = {exactness::named(families::random_cloud(300, 41), "random cloud 300"),
-                             exactness::rotated_lattice(7, 42)};
+                             families::rotated_lattice(7, 42)};
     for (const ProbeSet& set : sets) {
         const size_t n = set.count();
         const std::vector<float> sh = random_sh(n, 43);
@@ -399,7 +399,7 @@ TEST_CASE("the answers do not depend on the order the probes are given in", "[ex
 
 TEST_CASE("the fast and compact layouts give the same cell and probes, and the same weights within 1e-6", "[exact]") {
     std::vector<ProbeSet> sets = {exactness::named(families::random_cloud(500, 51), "random cloud 500"),
-                                  exactness::rotated_lattice(8, 52), exactness::cluster_in_a_kilometre(53),
+                                  families::rotated_lattice(8, 52), families::cluster_in_a_level(300, 0.01, 53),
                                   exactness::offset_lattice(6, 1.0 / 16, 1e6)};
     if (kScale == 1)
         sets.push_back(exactness::named(families::dense_room_in_a_level(54), "dense room in a level"));
@@ -440,10 +440,10 @@ TEST_CASE("the fast and compact layouts give the same cell and probes, and the s
 
 TEST_CASE("a walk started from any cell ends in a cell that holds the point, without falling back", "[exact]") {
     std::vector<ProbeSet> sets = {exactness::named(families::random_cloud(250, 61), "random cloud 250"),
-                                  exactness::rotated_lattice(6, 62),
+                                  families::rotated_lattice(6, 62),
                                   exactness::named(families::lattice(5, 5, 5), "lattice 5^3"),
                                   exactness::offset_lattice(5, 1.0 / 16, 1e6)};
-    if (kScale == 1) sets.push_back(exactness::cluster_in_a_kilometre(63));
+    if (kScale == 1) sets.push_back(families::cluster_in_a_level(300, 0.01, 63));
     for (const ProbeSet& set : sets) {
         for (uint32_t flags : kLayouts) {
             const Built b = exactness::build(set, flags);
