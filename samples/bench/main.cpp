@@ -1,5 +1,7 @@
-// tetprobe_bench [store|bake|all]: the store benchmark (this folder's bench_store.cpp) and the bake
-// benchmark (bench_bake.cpp). Default: all.
+// tetprobe_bench [store|bake|locate|probes|all] [--out DIR] [--quick]: the store benchmark (this
+// folder's bench_store.cpp), the bake benchmark (bench_bake.cpp), and the report's locate and
+// probe-count parts (bench_locate.cpp, bench_probe_count.cpp), which write JSON into DIR for
+// samples/bench/report.py. Default: all.
 #include "bench.h"
 
 #include <cstdio>
@@ -7,14 +9,19 @@
 
 int main(int argc, char** argv) {
     const char* which = argc > 1 ? argv[1] : "all";
-    const bool store = !std::strcmp(which, "store") || !std::strcmp(which, "all");
-    const bool bake = !std::strcmp(which, "bake") || !std::strcmp(which, "all");
-    if (!store && !bake) {
-        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|all]\n");
+    const bool all = !std::strcmp(which, "all");
+    const bool store = all || !std::strcmp(which, "store");
+    const bool bake = all || !std::strcmp(which, "bake");
+    const bool locate = all || !std::strcmp(which, "locate");
+    const bool probes = all || !std::strcmp(which, "probes");
+    if (!store && !bake && !locate && !probes) {
+        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all] [--out DIR] [--quick]\n");
         return 2;
     }
     int status = 0;
     if (store) status |= run_store_bench(argc, argv);
     if (bake) status |= run_bake_bench(argc, argv);
+    if (locate) status |= run_locate_bench(argc, argv);
+    if (probes) status |= run_probe_count_bench(argc, argv);
     return status;
 }
