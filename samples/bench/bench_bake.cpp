@@ -11,7 +11,6 @@
 // a smoke run.
 #include "bench.h"
 
-#include "bench_timing.h"
 #include "part_output.h"
 
 #include "bake/lighting_bake.h"
@@ -21,6 +20,7 @@
 #include "core/error.h"
 #include "core/sh.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -161,9 +161,16 @@ json bench_scene(const std::string& path, bool quick) {
                 settings.bounces = bounce_counts[b];
                 settings.seed = 7;
                 settings.emitter_sampling = sampled;
-                const Clock::time_point start = Clock::now();
-                const std::vector<float> sh = bake_lighting(scene, probes, settings);
-                const double elapsed = seconds_since(start);
+                // Wall time, median of 3 (the bake is deterministic: the same SH every time).
+                std::vector<float> sh;
+                double times[3];
+                for (double& t : times) {
+                    const Clock::time_point start = Clock::now();
+                    sh = bake_lighting(scene, probes, settings);
+                    t = seconds_since(start);
+                }
+                std::sort(times, times + 3);
+                const double elapsed = times[1];
                 double sh_error, irradiance_error, noise, unused;
                 errors(sh, reference, &sh_error, &irradiance_error);
                 errors(sh, same_bounce_references[b], &noise, &unused);
@@ -181,29 +188,32 @@ json bench_scene(const std::string& path, bool quick) {
     return result;
 }
 
-// Shadow-caster culling on and off at the same settings and seed: bake time (median of 3), the
-// plan's shadow casters both ways, and the largest difference of any SH coefficient.
+// Shadow-caster culling on and off at the same settings and seed: wall time of the whole bake (median of
+// 5, on and off interleaved so that a change in the machine's load hits both), the plan's shadow casters
+// both ways, and the largest difference of any SH coefficient.
 json bench_culling(const std::string& path, bool quick) {
     const Scene scene = load_scene_file(path);
     const std::vector<float>& probes = scene.probes();
     BakeSettings settings;
-    settings.rays = quick ? 64 : 512;
+    settings.rays = quick ? 64 : 2048;  // enough work that the machine's noise does not decide
     settings.bounces = 2;
     settings.seed = 7;
     json result = {{"scene", path}, {"probes", scene.probe_count()}, {"rays", settings.rays},
-                   {"bounces", settings.bounces}};
+                   {"bounces", settings.bounces}, {"repetitions", 5}};
     std::vector<float> baked[2];
+    std::vector<double> seconds[2];
+    for (int repetition = 0; repetition < 5; ++repetition)
+        for (const bool culling : {true, false}) {
+            settings.culling = culling;
+            const Clock::time_point start = Clock::now();
+            baked[culling ? 0 : 1] = bake_lighting(scene, probes, settings);
+            seconds[culling ? 0 : 1].push_back(seconds_since(start));
+        }
     for (const bool culling : {true, false}) {
-        settings.culling = culling;
+        std::vector<double>& s = seconds[culling ? 0 : 1];
+        std::sort(s.begin(), s.end());
         const EffectsPlan plan = derive_effects_plan(scene, probes, settings.bounces, culling);
-        const double seconds = bench::median_seconds(
-            [&] {
-                BakeStats stats;
-                baked[culling ? 0 : 1] = bake_lighting(scene, probes, settings, nullptr, &stats);
-                return stats.seconds;
-            },
-            3);
-        result[culling ? "on" : "off"] = {{"seconds", seconds},
+        result[culling ? "on" : "off"] = {{"seconds", s[s.size() / 2]},
                                           {"shadow_casters", plan.shadow_casters},
                                           {"shadow_caster_candidates", plan.shadow_caster_candidates}};
     }

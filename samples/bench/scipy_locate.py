@@ -7,8 +7,9 @@ builds scipy's own Delaunay (Qhull) on the same probes, times find_simplex per q
 DIR/scipy_locate.json. find_simplex takes no hint from the caller: within one call, each point's
 walk starts in the simplex where the previous point's ended, so the coherent paths (each object's
 frames in order) are its best case and the random points are its teleport. Times are for one
-vectorised call over all points (median of 5) and for one call per point on the first 2,000 points
-(what a per-object caller in Python pays). If scipy or the input is missing, the JSON says why.
+vectorised call over all points (median of 3) and for one call per point on the first 2,000 points
+(what a per-object caller in Python pays;
+each call starts its walk anew). If scipy or the input is missing, the JSON says why.
 """
 import json
 import os
@@ -50,7 +51,7 @@ def measure(directory):
         for query, name in (("coherent", "coherent"), ("teleport", "cold")):
             points = np.load(os.path.join(directory, files[name])).astype(np.float64)
             found = tri.find_simplex(points)
-            vectorised = _median_seconds(lambda: tri.find_simplex(points))
+            vectorised = _median_seconds(lambda: tri.find_simplex(points), repetitions=3)
             few = points[:2000]
             per_point = _median_seconds(lambda: [tri.find_simplex(p) for p in few], repetitions=3)
             rows.append({
