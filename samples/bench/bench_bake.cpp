@@ -249,7 +249,8 @@ int run_bake_bench(int argc, char** argv) {
     result["culling"] = json::array();
     try {
         for (const std::string& path : scenes) result["scenes"].push_back(bench_scene(path, quick));
-        std::printf("\n### Shadow-caster culling (same seed)\n\n| scene | shadow casters on / off | bake on | bake off | "
+        std::printf("\n### Shadow-caster culling (same seed)\n\n| scene | shadow casters on / off | bake on | "
+                    "bake off | "
                     "max |difference| | same bytes |\n| --- | ---: | ---: | ---: | ---: | :---: |\n");
         for (const std::string& path : culling_scenes) {
             const json c = bench_culling(path, quick);

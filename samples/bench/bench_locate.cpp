@@ -102,7 +102,9 @@ Row tetprobe_paths(const tp_store* store, const ObjectPaths& paths, float* sink)
 // cell (teleport), -2 gives no hint (the start grid).
 Row tetprobe_points(const tp_store* store, const std::vector<float>& points, int32_t fixed_hint, float* sink) {
     Row r{"tetprobe", fixed_hint == -1 ? "teleport" : "cold",
-          fixed_hint == -1 ? "hint of the previous random point" : fixed_hint == -2 ? "start grid" : "cell 0 (no grid)"};
+          fixed_hint == -1   ? "hint of the previous random point"
+          : fixed_hint == -2 ? "start grid"
+                             : "cell 0 (no grid)"};
     const size_t n = points.size() / 3;
     r.queries = n;
     const auto pass = [&](double* steps, long* worst) {
@@ -232,7 +234,8 @@ json run_size(size_t n, const Workload& w, const PartOptions& options, float* si
 
 int run_locate_bench(int argc, char** argv) {
     const PartOptions options = part_options(argc, argv);
-    const std::vector<size_t> counts = options.quick ? std::vector<size_t>{300} : std::vector<size_t>{1500, 10000, 65000};
+    const std::vector<size_t> counts =
+        options.quick ? std::vector<size_t>{300} : std::vector<size_t>{1500, 10000, 65000};
     const Workload w = options.quick ? Workload{32, 10, 500} : Workload{512, 100, 20000};
     json result = {{"part", "locate"}, {"machine", machine_json(options.quick)}, {"repetitions", kRepetitions}};
     result["peers_not_run"] = json::object();

@@ -63,7 +63,8 @@ json run_level(const Scene& scene, uint32_t per_axis, const float lo[3], const f
         for (uint32_t j = 0; j < per_axis; ++j)
             for (uint32_t k = 0; k < per_axis; ++k) {
                 const uint32_t index[3] = {i, j, k};
-                for (int a = 0; a < 3; ++a) probes.push_back(lo[a] + (hi[a] - lo[a]) * float(index[a]) / float(per_axis - 1));
+                for (int a = 0; a < 3; ++a)
+                    probes.push_back(lo[a] + (hi[a] - lo[a]) * float(index[a]) / float(per_axis - 1));
             }
     const size_t count = probes.size() / 3;
     settings.seed = 3;

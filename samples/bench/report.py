@@ -212,7 +212,8 @@ class Report:
             rows = [[num(r["rays"]), num(r["bounces"]),
                      {True: "on", False: "off"}.get(r.get("emitter_sampling"), "-"), num(r["seconds"]),
                      num(r["sh_error"]), num(r["irradiance_error"]), num(r["noise"])] for r in scene["rows"]]
-            out += table([("rays/probe", ">"), ("bounces", ">"), ("emitter sampling", ">"), ("bake s (median of 3)", ">"),
+            out += table([("rays/probe", ">"), ("bounces", ">"), ("emitter sampling", ">"),
+                          ("bake s (median of 3)", ">"),
                           ("SH error", ">"), ("irradiance error", ">"), ("SH noise", ">")], rows)
             out.append("")
         out += self.plot("bake_error_vs_time", doc) + [""]
