@@ -402,6 +402,7 @@ static class Tests
                                   "planes not a multiple of 4");
     }
 
+#if !TETPROBE_RUNTIME_TESTS
     static int Main(string[] args)
     {
         string scratch = args.Length > 0 ? args[0] : Path.GetTempPath();
@@ -423,6 +424,13 @@ static class Tests
                 Console.WriteLine("FAIL: unexpected " + e.GetType().Name + ": " + e.Message);
             }
         }
+        return Summary();
+    }
+#endif
+
+    /// <summary>Prints "N passed, N failed"; the exit code.</summary>
+    internal static int Summary()
+    {
         Console.WriteLine(passed + " passed, " + failed + " failed");
         return failed == 0 ? 0 : 1;
     }
