@@ -189,7 +189,9 @@ static class UnityTests
         catch (OperationCanceledException)
         {
             byte[] after = File.ReadAllBytes(asset);
-            Check(after.Length == before.Length, "baker: Cancel stops the bake and leaves the asset as it was");
+            bool unchanged = after.Length == before.Length;
+            for (int i = 0; unchanged && i < after.Length; ++i) unchanged = after[i] == before[i];
+            Check(unchanged, "baker: Cancel stops the bake and leaves the asset as it was");
         }
         UnityEditor.EditorUtility.CancelAt = float.PositiveInfinity;
 

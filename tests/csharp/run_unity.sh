@@ -14,3 +14,21 @@ mcs -nologo -warnaserror -unsafe -define:UNITY_5_3_OR_NEWER -define:UNITY_EDITOR
     -out:"$scratch/TetProbeUnityTests.exe" "$root"/bindings/csharp/*.cs "$root"/samples/unity/*.cs \
     "$root"/samples/unity/Editor/*.cs "$here"/unity_stubs/*.cs "$here/UnityTests.cs"
 LD_LIBRARY_PATH="$scratch${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" mono --debug "$scratch/TetProbeUnityTests.exe" "$scratch/work"
+
+# The plugin name per target, each variant compiled as Unity would (players without UNITY_EDITOR, so without the
+# editor script): the editor always loads the full library.
+names=0
+check_name() {  # expected-name defines...
+    local expected="$1"; shift
+    local defines=()
+    for d in "$@"; do defines+=("-define:$d"); done
+    mcs -nologo -warnaserror -unsafe "${defines[@]}" -target:exe -out:"$scratch/LibraryName.exe" "$root"/bindings/csharp/*.cs \
+        "$root"/samples/unity/*.cs "$root"/samples/unity/Editor/*.cs "$here"/unity_stubs/*.cs "$here/LibraryName.cs"
+    mono "$scratch/LibraryName.exe" "$expected" || names=1
+}
+check_name tetprobe UNITY_5_3_OR_NEWER
+check_name tetprobe_runtime UNITY_5_3_OR_NEWER TETPROBE_RUNTIME
+check_name tetprobe UNITY_5_3_OR_NEWER UNITY_EDITOR TETPROBE_RUNTIME
+check_name __Internal UNITY_5_3_OR_NEWER UNITY_IOS TETPROBE_RUNTIME
+check_name tetprobe UNITY_5_3_OR_NEWER UNITY_IOS UNITY_EDITOR
+exit $names
