@@ -24,9 +24,13 @@ static class VersionTests
             NativeProxy.VersionSource = () => (1u << 16) | (5u << 8);
             Tests.Throws<TetProbeException>(() => new Scene(), "another major refused", e => e.Status == TetProbeStatus.Version);
 
+            NativeProxy.VersionSource = () => { throw new DllNotFoundException("libtetprobe.so: cannot open shared object file"); };
+            Tests.Throws<DllNotFoundException>(() => new Scene(), "a missing library says which plugin to put where",
+                                               e => e.Message.Contains("'tetprobe'") && e.InnerException != null);
+
             NativeProxy.VersionSource = () => (0u << 16) | (5u << 8) | 9u;
-            using (ProbeStore.Build(new[] { new Vector3(0, 0, 0) }, null))
-                Tests.Check(true, "another patch of 0.5 is accepted");
+            using (ProbeStore store = ProbeStore.Build(new[] { new Vector3(0, 0, 0) }, null))
+                Tests.Check(store.Info.Probes == 1, "another patch of 0.5 is accepted");
         }
         finally
         {
