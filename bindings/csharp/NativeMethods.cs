@@ -1,6 +1,10 @@
 // Layer 1: the raw C ABI of capi/tetprobe.h as P/Invoke declarations, one per exported function,
 // and the structs that cross it. Nothing here checks a status; see NativeProxy. tests/csharp checks every
 // declaration here against the header (names, parameter and return types, struct layouts).
+// Span overloads on by themselves wherever the runtime has Span<T> in its core library.
+#if UNITY_2021_2_OR_NEWER || NETCOREAPP2_1_OR_GREATER || NETSTANDARD2_1_OR_GREATER
+#define TETPROBE_SPAN
+#endif
 using System;
 using System.Runtime.InteropServices;
 #if UNITY_5_3_OR_NEWER

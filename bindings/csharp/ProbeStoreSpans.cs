@@ -1,5 +1,9 @@
 // Batch queries on Span<T>/ReadOnlySpan<T> (compiled with TETPROBE_SPAN: Mono 6, .NET Core 2.1+, Unity 2021.2+):
 // engine-owned buffers go to the library in place, without copies.
+// Span overloads on by themselves wherever the runtime has Span<T> in its core library.
+#if UNITY_2021_2_OR_NEWER || NETCOREAPP2_1_OR_GREATER || NETSTANDARD2_1_OR_GREATER
+#define TETPROBE_SPAN
+#endif
 #if TETPROBE_SPAN
 using System;
 using System.Runtime.InteropServices;

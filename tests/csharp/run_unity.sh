@@ -31,4 +31,5 @@ check_name tetprobe_runtime UNITY_5_3_OR_NEWER TETPROBE_RUNTIME
 check_name tetprobe UNITY_5_3_OR_NEWER UNITY_EDITOR TETPROBE_RUNTIME
 check_name __Internal UNITY_5_3_OR_NEWER UNITY_IOS TETPROBE_RUNTIME
 check_name tetprobe UNITY_5_3_OR_NEWER UNITY_IOS UNITY_EDITOR
+check_name tetprobe UNITY_5_3_OR_NEWER UNITY_2021_2_OR_NEWER  # spans on by themselves
 exit $names
