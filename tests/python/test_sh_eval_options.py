@@ -1,6 +1,8 @@
 """SH evaluation options through the C ABI: identities, analytic answers, brute force and bad arguments."""
 import ctypes
 import math
+import os
+import re
 
 import numpy as np
 import pytest
@@ -160,3 +162,11 @@ def test_bad_arguments():
     options = sh.eval_options("l1", "sloan", float("nan"))
     options.struct_size = 8
     assert lib.tp_sh_eval_irradiance_ex(coefficients, normal, ctypes.byref(options), out) == 0
+
+
+def test_constants_and_struct_match_the_header():
+    with open(os.path.join(os.path.dirname(__file__), "..", "..", "capi", "tetprobe.h")) as f:
+        defines = dict(re.findall(r"#define\s+(TP_SH_\w+)\s+(\d+)u", f.read()))
+    for name in ("ORDER_L2", "ORDER_L1", "ORDER_ZH3", "WINDOW_NONE", "WINDOW_SLOAN", "WINDOW_NONNEGATIVE"):
+        assert int(defines["TP_SH_" + name]) == getattr(_native, "SH_" + name)
+    assert ctypes.sizeof(_native.ShEvalOptions) == 16
