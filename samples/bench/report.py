@@ -105,9 +105,13 @@ class Report:
             return out + not_run(self.missing["methods"]) + [""]
         bake = doc.get("bake", {})
         out += ["Every method on the same probes, query points and path; the reference is baked directly at "
-                "each query point (%s rays, %s bounces). Error: %s Popping: %s Timing: %s" % (
-                    bake.get("rays", "?"), bake.get("bounces", "?"), doc.get("error", ""),
-                    doc.get("popping", ""), doc.get("timing", "")), ""]
+                "each query point (%s rays, %s bounces)." % (bake.get("rays", "?"), bake.get("bounces", "?")), ""]
+        for what in ("irradiance", "error", "popping", "timing"):
+            if doc.get(what):
+                out.append("- %s: %s" % (what, doc[what]))
+        if isinstance(doc.get("damping"), dict) and doc["damping"].get("rule"):
+            out.append("- damping: %s" % doc["damping"]["rule"])
+        out.append("")
         for scene in doc.get("scenes", []):
             out += ["### %s" % scene.get("name", "?"), "",
                     "%s probes (%s); %s query points; reference noise (a second reference, another seed): %s." % (

@@ -5,6 +5,7 @@ its file name; Plotter.draw turns a missing matplotlib or missing data into a re
 """
 import os
 import re
+import textwrap
 
 
 def _slug(text):
@@ -43,18 +44,19 @@ class Plotter:
     def methods_error_vs_time(self, scene):
         plt = self.plt
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
-        for m in scene["methods"]:
+        markers = "osD^vP*Xh<>"
+        for i, m in enumerate(scene["methods"]):
             if m.get("ns_per_query") is None or m.get("rms_error") is None:
                 continue
-            ax.scatter(m["ns_per_query"], m["rms_error"], s=36)
-            ax.annotate(m.get("label", m["id"]), (m["ns_per_query"], m["rms_error"]), textcoords="offset points",
-                        xytext=(5, 4), fontsize=8)
+            ax.scatter(m["ns_per_query"], m["rms_error"], s=48, marker=markers[i % len(markers)],
+                       label=m.get("label", m["id"]), zorder=3)
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("ns per query (single queries along the path)")
         ax.set_ylabel("RMS irradiance error (relative)")
         ax.set_title("%s: error vs time per query" % scene["name"])
         ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
         return fig, "methods_error_vs_time_%s.png" % _slug(scene["name"])
 
     def slices(self, scene):
@@ -68,20 +70,22 @@ class Plotter:
         arrays = [np.asarray(v, dtype=float).reshape(nz, nx) for _, v in images]
         lo = min(float(np.nanmin(a)) for a in arrays)
         hi = max(float(np.nanmax(a)) for a in arrays)
-        cols = min(4, len(images))
+        cols = min(3, len(images))
         rows = (len(images) + cols - 1) // cols
-        fig, axes = plt.subplots(rows, cols, figsize=(3.4 * cols, 3.1 * rows), squeeze=False)
+        aspect = (s["z"][1] - s["z"][0]) / max(s["x"][1] - s["x"][0], 1e-9)
+        fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, (4.2 * aspect + 1.2) * rows), squeeze=False,
+                                 constrained_layout=True)
         extent = [s["x"][0], s["x"][1], s["z"][0], s["z"][1]]
         shown = None
         for index, (ax, (label, _), a) in enumerate(zip(axes.flat, images, arrays)):
             shown = ax.imshow(a, origin="lower", extent=extent, vmin=lo, vmax=hi, cmap="inferno", aspect="equal")
-            ax.set_title(label, fontsize=9)
+            ax.set_title(textwrap.fill(label, 34), fontsize=9)
             ax.set_xlabel("x (m)")
             if index % cols == 0:
                 ax.set_ylabel("z (m)")
         for ax in list(axes.flat)[len(images):]:
             ax.axis("off")
-        bar = fig.colorbar(shown, ax=axes.ravel().tolist(), shrink=0.85)
+        bar = fig.colorbar(shown, ax=axes.ravel().tolist(), shrink=0.8)
         bar.set_label("irradiance / scene mean (normal %s)" % (s.get("normal"),))
         fig.suptitle("%s: slice at %s = %.2f m" % (scene["name"], s.get("axis", "y"), s["height"]))
         return fig, "slices_%s.png" % _slug(scene["name"])
@@ -97,7 +101,7 @@ class Plotter:
         ax.set_xlabel("frame along the path")
         ax.set_ylabel("irradiance / scene mean (normal %s)" % (path.get("normal"),))
         ax.set_title("%s: irradiance along a moving object's path (popping)" % scene["name"])
-        ax.legend(fontsize=7, ncol=2)
+        ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16))
         ax.grid(True, alpha=0.3)
         return fig, "popping_%s.png" % _slug(scene["name"])
 
