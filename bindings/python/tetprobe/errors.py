@@ -31,5 +31,8 @@ class Error(RuntimeError):
             pass
         self.status = status
         self.message = message
-        name = "TP_ERROR_" + status.name if isinstance(status, Status) else "status %d" % status
+        if isinstance(status, Status):
+            name = "TP_OK" if status == Status.OK else "TP_ERROR_" + status.name
+        else:
+            name = "status %d" % status
         super().__init__("%s: %s" % (name, message) if message else name)
