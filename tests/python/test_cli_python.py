@@ -142,7 +142,8 @@ def test_csv_numbers_are_read_as_strtof_reads_them(tmp_path):
     assert cli.parse_float32(tricky[0]) == np.float32(1) + np.float32(2.0 ** -23)
     for rejected in ["", "1,5", "1 2", "0x", "1e", "nanx", "1_0", "--1"]:
         assert cli.parse_float32(rejected) is None, rejected
-    bad = {"short.csv": "0,0,0\n1,2\n", "text.csv": "0,0,0\n1,x,0\n", "mixed.csv": "0,0,0\n" + ",".join(["1"] * 30) + "\n",
+    bad = {"short.csv": "0,0,0\n1,2\n", "text.csv": "0,0,0\n1,x,0\n",
+           "mixed.csv": "0,0,0\n" + ",".join(["1"] * 30) + "\n",
            "double_comma.csv": "0,0,0,,\n", "overflow.csv": "0,0,0\n3.5e38,0,0\n", "nan.csv": "0,0,0\n1,nan,0\n",
            "probes.dat": "0,0,0\n", "empty.csv": "x,y,z\n"}
     for name, text in bad.items():
@@ -192,7 +193,8 @@ def test_failures_and_usage_errors_match(tmp_path):
         assert_same(*both(tmp_path, *args))
     usage_errors = [["query", garbage, "x", 0, 0], ["query", garbage, "1e999", 0, 0], ["query", garbage, 1, 2],
                     ["build", tmp_path / "probes.csv", "-o", tmp_path / "x.tpb", "--compactt"], ["build", "-o"],
-                    ["bake", "scene.json", "-o", "x", "--rays", "zero"], ["bake", "scene.json", "-o", "x", "--rays", "0"],
+                    ["bake", "scene.json", "-o", "x", "--rays", "zero"],
+                    ["bake", "scene.json", "-o", "x", "--rays", "0"],
                     ["bake", "scene.json", "-o", "x", "--seed", "-1"], ["plan"], ["frobnicate"], []]
     for args in usage_errors:
         c, python = both(tmp_path, *args)
@@ -208,7 +210,8 @@ def test_nlohmann_number_spelling():
         ["1.0", "100.0", "0.5", "-0.0", "1e-05", "0.0001", "1e+15", "1e+16", "1.5e-07", "2.5e+300"]
     assert cli.dump_json(123456789012345.0) == "123456789012345.0"
     assert cli.dump_json(float("nan")) == "null"
-    assert cli.dump_json({"a": [1, True, "x\n"], "b": []}, 2) == '{\n  "a": [\n    1,\n    true,\n    "x\\n"\n  ],\n  "b": []\n}'
+    assert cli.dump_json({"a": [1, True, "x\n"], "b": []}, 2) == \
+        '{\n  "a": [\n    1,\n    true,\n    "x\\n"\n  ],\n  "b": []\n}'
     assert cli.dump_json([3, 4, 5]) == "[3,4,5]"
 
 

@@ -68,7 +68,8 @@ def test_the_run_time_library_refuses_bake_time_work_with_unsupported(tmp_path):
     Store.build(positions, coefficients).save(tmp_path / "built.tpb")
     script = ("import tetprobe\n"
               "for work in (tetprobe.Scene, lambda: tetprobe.Store.build([[0, 0, 0], [1, 0, 0]])):\n"
-              "    try:\n        work()\n    except tetprobe.Error as e:\n        print(e.status.name, bool(e.message))\n"
+              "    try:\n        work()\n"
+              "    except tetprobe.Error as e:\n        print(e.status.name, bool(e.message))\n"
               "print(tetprobe.Store.load(%r).info()['probes'])\n" % str(tmp_path / "built.tpb"))
     env = dict(os.environ, TETPROBE_LIBRARY=runtime)
     result = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, timeout=60, env=env)
@@ -82,7 +83,8 @@ def test_a_closed_store_or_scene_is_a_clear_error(tmp_path):
     store.close()  # twice is fine
     for use in (store.info, store.to_bytes, lambda: store.save(tmp_path / "x.tpb"), lambda: store.probe_sh(0),
                 lambda: store.interpolate(positions), lambda: store.interpolate(positions[0]),
-                lambda: store.weights(positions), lambda: store.weights(positions[0]), lambda: store.locate(positions[0])):
+                lambda: store.weights(positions), lambda: store.weights(positions[0]),
+                lambda: store.locate(positions[0])):
         error = raised(use)
         assert error.status is Status.INVALID_ARGUMENT and error.message == "the store is closed"
     with Scene() as scene:

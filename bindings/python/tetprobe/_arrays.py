@@ -21,12 +21,14 @@ def as_array(values, name, dtype=np.float32):
     target = np.dtype(dtype)
     if data.dtype.kind not in _ACCEPTED_KINDS[target]:
         wanted = "numbers" if target.kind == "f" else "integers"
-        raise TypeError("%s must be an array of %s, converted to %s (got dtype %s)" % (name, wanted, target, data.dtype))
+        raise TypeError("%s must be an array of %s, converted to %s (got dtype %s)" %
+                        (name, wanted, target, data.dtype))
     if target.kind in "iu" and data.size and data.dtype != target:
         info = np.iinfo(target)
         low, high = data.min(), data.max()
         if low < info.min or high > info.max:
-            raise ValueError("%s must lie in [%d, %d] (got values from %d to %d)" % (name, info.min, info.max, low, high))
+            raise ValueError("%s must lie in [%d, %d] (got values from %d to %d)" %
+                             (name, info.min, info.max, low, high))
     return data.astype(target, copy=False)
 
 

@@ -242,7 +242,8 @@ def _read_csv(lines, path):
                 continue
             raise Failure("%s:%d: not a list of numbers" % (path, number))
         if len(values) not in (3, 30):
-            raise Failure("%s:%d: expected 3 (x,y,z) or 30 (x,y,z + 27 SH) values, got %d" % (path, number, len(values)))
+            raise Failure("%s:%d: expected 3 (x,y,z) or 30 (x,y,z + 27 SH) values, got %d" %
+                          (path, number, len(values)))
         if positions and (len(values) == 30) != bool(sh):
             raise Failure("%s:%d: every line must have the same columns" % (path, number))
         positions.append(values[:3])
@@ -346,7 +347,8 @@ class ProgressBar:
             return False
         self.last_percent = percent
         filled = percent * 30 // 100
-        sys.stderr.write("\r%-6s [%s%s] %3d%% %-24.24s" % (self.label, "#" * filled, " " * (30 - filled), percent, stage))
+        bar = "#" * filled + " " * (30 - filled)
+        sys.stderr.write("\r%-6s [%s] %3d%% %-24.24s" % (self.label, bar, percent, stage))
         sys.stderr.flush()
         return False
 

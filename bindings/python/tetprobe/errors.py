@@ -4,7 +4,7 @@ import enum
 
 
 class Status(enum.IntEnum):
-    """The C ABI's tp_status values."""
+    """The C ABI's tp_status values (TP_ERROR_<name>): Error.status is one of them; OK (0) is never raised."""
     OK = 0
     INVALID_ARGUMENT = 1
     OUT_OF_MEMORY = 2

@@ -50,8 +50,9 @@ class Scene(NativeHandle):
         """Adds a mesh of vertices[V, 3] (float32 world units) and triangles indices[T, 3] (integers in
         [0, V), counter-clockwise seen from the front) with one material; returns the mesh's id (int).
 
-        albedo=(r, g, b): diffuse reflectance, each in [0, 1] (None = the library's default); emission=
-        (r, g, b): emitted radiance, >= 0; two_sided=False makes only the front face reflect and emit.
+        albedo=(r, g, b): diffuse reflectance, each in [0, 1] (None = the library's default);
+        emission=(r, g, b): emitted radiance, >= 0; two_sided=False makes only the front face reflect
+        and emit.
         An index outside [0, V) raises Error(INVALID_ARGUMENT) from the library."""
         points, _, _ = rows(vertices, 3, "vertices")
         points = np.ascontiguousarray(points)
@@ -104,7 +105,7 @@ class Scene(NativeHandle):
 
     def add_spot_light(self, position, direction, color, intensity=1.0, range=math.inf, inner_angle=None,
                        outer_angle=None, mode="baked", shadows=True):
-        """Adds a spot light at position=(x, y, z) shining along direction=(x, y, z) of linear
+        """Adds a spot light at position=(x, y, z) (world units) shining along direction=(x, y, z) of linear
         color=(r, g, b), intensity and range as add_point_light; inner_angle and outer_angle are full
         cone angles in degrees (full intensity inside inner_angle, none beyond outer_angle; None = the
         library's defaults); mode and shadows as in add_directional_light. Returns the light's id (int)."""
@@ -183,7 +184,7 @@ def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, pro
     direct_lights, realtime_lights, out_of_range_lights, sky (bool), emissive_meshes, bounces, shadows
     (bool), meshes, shadow_casters, shadow_caster_candidates, and text (the one-line summary).
 
-    scene, positions[N, 3] (None = the scene's probes), rays, bounces, seed, threads, progress and
+    scene, positions[N, 3] (float32 world units; None = the scene's probes), rays, bounces, seed, threads, progress and
     culling as in bake; progress is not called (planning is quick)."""
     points, stride = _positions(scene, positions)
     options, _ = _options(rays, bounces, seed, threads, progress, culling)

@@ -197,9 +197,9 @@ class Store(NativeHandle):
 
         indices are input probe indices (survivors of merges) in [0, input_probes); unused slots weigh 0
         and repeat a used probe. Inside the hull the weights are the Delaunay barycentrics, in [0, 1],
-        summing to 1; a query at a probe weighs it exactly 1. points, hints, threads and chain_hints as
-        in interpolate; a single point of shape [3] is one tp_store_weights call and gives
-        (indices[4], weights[4], hint int)."""
+        summing to 1; a query at a probe weighs it exactly 1. points[M, 3] (float32 world units),
+        hints[M] (int32 cells, -1 = none), threads and chain_hints as in interpolate; a single point of
+        shape [3] is one tp_store_weights call and gives (indices[4], weights[4], hint int)."""
         data, stride, single = rows(points, 3, "points")
         if single and not chain_hints:
             cell = self._single_hint(hints)
