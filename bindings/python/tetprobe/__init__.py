@@ -15,7 +15,8 @@ or Scene raises Error(INVALID_ARGUMENT).
 
 The library is found through $TETPROBE_LIBRARY, then next to this package, then the source tree's
 build/ (when the package is used from the repository), then the system's library path; a library
-whose major.minor version differs from this package's is refused at import.
+whose major.minor version differs from this package's is refused at import. The command line
+`python3 -m tetprobe` (or the `tetprobe` script of a pip install) is tetprobe.cli.
 
     import numpy as np, tetprobe
     positions = np.random.rand(100, 3).astype(np.float32) * 10

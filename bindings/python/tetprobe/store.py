@@ -12,7 +12,9 @@ from ._native import SH_FLOATS, check, lib
 
 
 class Store(NativeHandle):
-    """An immutable probe store. Build it with Store.build or read it with Store.load."""
+    """An immutable probe store. Build it with Store.build or read it with Store.load; any number of threads
+    may query one store at once. close() or a `with` block releases it (so does garbage collection);
+    a closed store raises Error(INVALID_ARGUMENT, "the store is closed")."""
 
     _release = staticmethod(lib.tp_store_release)
     _noun = "store"
