@@ -44,15 +44,20 @@ def parse_declaration(declaration):
     return base, depth, bool(const), length, name
 
 
-SCALARS = {"uint32_t": ctypes.c_uint32, "int32_t": ctypes.c_int32, "uint64_t": ctypes.c_uint64,
-           "size_t": ctypes.c_size_t, "float": ctypes.c_float, "double": ctypes.c_double, "int": ctypes.c_int,
-           "tp_status": ctypes.c_int, "tp_progress_fn": _native.ProgressFn}
+SCALARS = {"uint8_t": ctypes.c_uint8, "int8_t": ctypes.c_int8, "uint16_t": ctypes.c_uint16, "int16_t": ctypes.c_int16,
+           "uint32_t": ctypes.c_uint32, "int32_t": ctypes.c_int32, "uint64_t": ctypes.c_uint64,
+           "int64_t": ctypes.c_int64, "size_t": ctypes.c_size_t, "float": ctypes.c_float, "double": ctypes.c_double,
+           "int": ctypes.c_int, "tp_status": ctypes.c_int, "tp_progress_fn": _native.ProgressFn}
 HANDLES = ("tp_store", "tp_scene")
 
 
 def struct_class(c_name):
-    """The ctypes Structure of a header struct: tp_build_options -> _native.BuildOptions."""
-    return getattr(_native, "".join(part.capitalize() for part in c_name[len("tp_"):].split("_")))
+    """The ctypes Structure of a header struct: tp_build_options -> _native.BuildOptions (any capitals)."""
+    wanted = c_name[len("tp_"):].replace("_", "").lower()
+    matches = [value for name, value in vars(_native).items()
+               if name.lower() == wanted and isinstance(value, type) and issubclass(value, ctypes.Structure)]
+    assert len(matches) == 1, "no ctypes Structure in _native for %s" % c_name
+    return matches[0]
 
 
 def accepted_ctypes(declaration):
@@ -116,7 +121,9 @@ def test_every_struct_matches_the_header_field_by_field():
                 assert issubclass(ctype, ctypes.Array), (c_name, name)
                 assert (ctype._type_, ctype._length_) == (SCALARS[base], int(length)), (c_name, name)
             elif depth == 1:
-                assert base == "void" and ctype is ctypes.c_void_p, (c_name, name)
+                pointee = {"void": None, "char": ctypes.c_char}.get(base, SCALARS.get(base))
+                accepted = {ctypes.c_void_p} | ({ctypes.POINTER(pointee)} if pointee else set())
+                assert ctype in accepted, (c_name, name)
             else:
                 assert ctype is SCALARS[base], (c_name, name)
 
