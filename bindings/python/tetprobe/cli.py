@@ -2,14 +2,15 @@
 
 Run it as `python3 -m tetprobe ...` or, once the package is pip-installed, as the console script
 `tetprobe`. Output is the C tool's byte for byte (tests/python/test_cli_python.py runs both on the same
-inputs and files), except timings, the wording of an invalid-JSON message, and how a JSON number is
-spelled: both print the same double, here with the shortest digits that read back to it, where
-nlohmann's Grisu2 sometimes prints one digit more. The C tool's `demo` (pictures) is not part of it.
+inputs and files), except timings and the wording of an invalid-JSON message: JSON numbers are spelled
+by the same Grisu2 as nlohmann's dump (not always the shortest digits). The C tool's `demo` (pictures)
+is not part of it.
 """
 
 import json
 import math
 import re
+import struct
 import sys
 import time
 from fractions import Fraction
@@ -151,22 +152,109 @@ def parse_count(text, what):
     return (-value) % (1 << 64) if match.group(1) == "-" else value
 
 
-# ---- output as nlohmann::json prints it
+# ---- output as nlohmann::json prints it: Grisu2 (Loitsch, PLDI 2010) digits, then its fixed/exponent layout
+
+def _cached_powers_of_ten():
+    """(f, e, k) with f * 2^e the 64-bit significand of 10^k rounded to nearest, for k = -300, -292, ..., 324."""
+    table = []
+    for k in range(-300, 325, 8):
+        numerator, denominator = (10 ** k, 1) if k >= 0 else (1, 10 ** -k)
+        e = numerator.bit_length() - denominator.bit_length() - 64
+        while True:
+            scaled_numerator = numerator << -e if e < 0 else numerator
+            scaled_denominator = denominator << e if e > 0 else denominator
+            quotient = scaled_numerator // scaled_denominator
+            if quotient >= 1 << 64:
+                e += 1
+            elif quotient < 1 << 63:
+                e -= 1
+            else:
+                break
+        f = (2 * scaled_numerator + scaled_denominator) // (2 * scaled_denominator)
+        table.append((f >> 1, e + 1, k) if f == 1 << 64 else (f, e, k))
+    return table
+
+
+_CACHED_POWERS = _cached_powers_of_ten()
+_ALPHA, _GAMMA = -60, -32
+
+
+def _multiply(x, y):
+    """The upper 64 bits of the 128-bit product of two (significand, exponent) pairs, rounded half up."""
+    return (x[0] * y[0] + (1 << 63)) >> 64, x[1] + y[1] + 64
+
+
+def _normalized(f, e):
+    shift = 64 - f.bit_length()
+    return f << shift, e - shift
+
+
+def _grisu2(value):
+    """(digits, decimal exponent) with digits * 10^exponent within value's rounding interval: nlohmann's
+    Grisu2, which usually but not always finds the shortest such digits."""
+    bits = struct.unpack("<Q", struct.pack("<d", value))[0]
+    biased, fraction = bits >> 52, bits & ((1 << 52) - 1)
+    f, e = (fraction, -1074) if biased == 0 else (fraction + (1 << 52), biased - 1075)
+    plus = _normalized(2 * f + 1, e - 1)
+    minus_f, minus_e = (4 * f - 1, e - 2) if fraction == 0 and biased > 1 else (2 * f - 1, e - 1)
+    minus = (minus_f << (minus_e - plus[1]), plus[1])
+    v = _normalized(f, e)
+    index_k = _ALPHA - plus[1] - 1
+    k = (index_k * 78913) // (1 << 18) + (1 if index_k > 0 else 0)  # C division truncates towards zero
+    if index_k * 78913 < 0 and (index_k * 78913) % (1 << 18):
+        k += 1
+    cached_f, cached_e, cached_k = _CACHED_POWERS[(300 + k + 7) // 8]
+    w = _multiply(v, (cached_f, cached_e))
+    w_minus = _multiply(minus, (cached_f, cached_e))
+    w_plus = _multiply(plus, (cached_f, cached_e))
+    high, low = w_plus[0] - 1, w_minus[0] + 1
+    return _grisu2_digits(low, w[0], high, w_plus[1], -cached_k)
+
+
+def _grisu2_digits(low, w, high, e, decimal_exponent):
+    delta, dist = high - low, high - w
+    one = 1 << -e
+    p1, p2 = high >> -e, high & (one - 1)
+    digits = []
+    power = 10 ** (len(str(p1)) - 1)
+    n = len(str(p1))
+    while n > 0:
+        digits.append(p1 // power)
+        p1 %= power
+        n -= 1
+        rest = (p1 << -e) + p2
+        if rest <= delta:
+            return _grisu2_round(digits, dist, delta, rest, power << -e), decimal_exponent + n
+        power //= 10
+    m = 0
+    while True:
+        p2 *= 10
+        digits.append(p2 >> -e)
+        p2 &= one - 1
+        m += 1
+        delta *= 10
+        dist *= 10
+        if p2 <= delta:
+            return _grisu2_round(digits, dist, delta, p2, one), decimal_exponent - m
+
+
+def _grisu2_round(digits, dist, delta, rest, ten_k):
+    while rest < dist and delta - rest >= ten_k and (rest + ten_k < dist or dist - rest > rest + ten_k - dist):
+        digits[-1] -= 1
+        rest += ten_k
+    return "".join(str(d) for d in digits)
+
 
 def _format_double(value):
-    """A double as nlohmann::json's dump writes it: shortest round-trip digits, "1.0" for integral values,
-    exponents beyond 1e15 and below 1e-4 as "1e+16" / "1e-05", and null for NaN and infinities."""
+    """A double as nlohmann::json's dump writes it: Grisu2 digits, "1.0" for integral values, exponents
+    beyond 1e15 and below 1e-4 as "1e+16" / "1e-05", and null for NaN and infinities."""
     if not math.isfinite(value):
         return "null"
     sign = "-" if math.copysign(1.0, value) < 0 else ""
     if value == 0:
         return sign + "0.0"
-    mantissa, _, exponent = repr(abs(value)).partition("e")
-    whole, _, fraction = mantissa.partition(".")
-    digits = (whole + fraction).lstrip("0")
-    exponent = int(exponent or 0) + len(whole) - (len(whole + fraction) - len(digits))  # value = 0.digits * 10^exp
-    digits = digits.rstrip("0")
-    k, n = len(digits), exponent
+    digits, exponent = _grisu2(abs(value))
+    k, n = len(digits), len(digits) + exponent  # value = 0.digits * 10^n
     if k <= n <= 15:
         text = digits + "0" * (n - k) + ".0"
     elif 0 < n <= 15:
