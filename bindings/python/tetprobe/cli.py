@@ -199,10 +199,10 @@ def _grisu2(value):
     minus_f, minus_e = (4 * f - 1, e - 2) if fraction == 0 and biased > 1 else (2 * f - 1, e - 1)
     minus = (minus_f << (minus_e - plus[1]), plus[1])
     v = _normalized(f, e)
-    index_k = _ALPHA - plus[1] - 1
-    k = (index_k * 78913) // (1 << 18) + (1 if index_k > 0 else 0)  # C division truncates towards zero
-    if index_k * 78913 < 0 and (index_k * 78913) % (1 << 18):
-        k += 1
+    # The cached power that brings plus's exponent into [alpha, gamma]: k ~ ceil((alpha - e - 1) * log10(2)),
+    # with 78913 / 2^18 for log10(2) and C's division, which truncates towards zero.
+    scaled = (_ALPHA - plus[1] - 1) * 78913
+    k = (abs(scaled) >> 18) * (1 if scaled >= 0 else -1) + (1 if scaled > 0 else 0)
     cached_f, cached_e, cached_k = _CACHED_POWERS[(300 + k + 7) // 8]
     w = _multiply(v, (cached_f, cached_e))
     w_minus = _multiply(minus, (cached_f, cached_e))
