@@ -30,6 +30,12 @@ LIGHT_POINT = 1
 LIGHT_SPOT = 2
 LIGHT_MODE_BAKED = 0
 LIGHT_MODE_REALTIME = 1
+SH_ORDER_L2 = 0
+SH_ORDER_L1 = 1
+SH_ORDER_ZH3 = 2
+SH_WINDOW_NONE = 0
+SH_WINDOW_SLOAN = 1
+SH_WINDOW_NONNEGATIVE = 2
 
 ProgressFn = CFUNCTYPE(c_int, c_void_p, c_float, c_char_p)
 
@@ -54,6 +60,10 @@ class BatchOptions(Structure):
 class Location(Structure):
     _fields_ = [("struct_size", c_uint32), ("cell", c_int32), ("cell_kind", c_uint32), ("steps", c_uint32),
                 ("fallback", c_uint32), ("probes", c_uint32 * 4), ("weights", c_float * 4), ("t", c_float)]
+
+
+class ShEvalOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("order", c_uint32), ("window", c_uint32), ("window_strength", c_float)]
 
 
 class Material(Structure):
@@ -125,6 +135,11 @@ PROTOTYPES = (
     ("tp_sh_eval_irradiance", _status, (_buffer, _buffer, _buffer)),
     ("tp_sh_add_ambient", _status, (_buffer, _buffer)),
     ("tp_sh_add_directional", _status, (_buffer, _buffer, _buffer)),
+    ("tp_sh_eval_options_init", _status, (POINTER(ShEvalOptions),)),
+    ("tp_sh_eval_irradiance_ex", _status, (_buffer, _buffer, POINTER(ShEvalOptions), _buffer)),
+    ("tp_sh_apply_options", _status, (_buffer, POINTER(ShEvalOptions))),
+    ("tp_sh_min_irradiance", _status, (_buffer, POINTER(ShEvalOptions), _buffer, _buffer)),
+    ("tp_sh_nonnegative_window_strength", _status, (_buffer, POINTER(ShEvalOptions), POINTER(c_float))),
     ("tp_shadow_caster_volume_bound", c_size_t, (c_size_t,)),
     ("tp_shadow_caster_volume", _status, (_buffer, c_size_t, c_uint32, _buffer, _buffer, c_size_t,
                                           POINTER(c_size_t))),
