@@ -80,8 +80,9 @@ def test_every_public_name_has_a_docstring_that_names_its_parameters_and_array_s
                 continue
             assert re.search(r"\b%s\b" % parameter, doc), "%s: parameter %r is not described" % (name, parameter)
             if parameter in arrays:
-                # An array parameter is given with its shape (name[...]) or its components (name=(x, y, z)).
-                assert re.search(r"\b%s(\[[^\]]*\]|=\()" % parameter, doc), \
+                # An array parameter is given with its shape (name[N, 3], "name is [27]", "name ([M, 27] ...")
+                # or its components (name=(x, y, z)).
+                assert re.search(r"\b%s(\s*(is\s+|\(|:\s*)?\[[^\]]*\]|=\()" % parameter, doc), \
                     "%s: array parameter %r has no shape in the docstring" % (name, parameter)
             if parameter in ("positions", "points", "point", "vertices", "position", "center"):
                 assert "world units" in doc, "%s: %r without units" % (name, parameter)

@@ -11,7 +11,7 @@ from ctypes import byref, c_float
 
 import numpy as np
 
-from ._arrays import vector
+from ._arrays import as_array, vector
 from ._native import (SH_FLOATS, SH_ORDER_L1, SH_ORDER_L2, SH_ORDER_ZH3, SH_WINDOW_NONE, SH_WINDOW_NONNEGATIVE,
                       SH_WINDOW_SLOAN, ShEvalOptions, check, lib)
 
@@ -66,7 +66,8 @@ def _choice(value, table, name):
 def eval_options(order="l2", window="none", strength=0.0):
     """A tp_sh_eval_options struct: order "l2" (27 floats), "l1" (bands 0-1) or "zh3" (L1 plus a zonal L2
     term estimated from it); window "none", "sloan" (band l scaled by 1 / (1 + strength (l(l+1))^2)) or
-    "nonnegative" (the smallest such strength keeping the irradiance >= 0; strength not read)."""
+    "nonnegative" (the smallest such strength keeping the irradiance >= 0; strength not read); strength
+    is a float >= 0."""
     options = ShEvalOptions()
     check(lib.tp_sh_eval_options_init(byref(options)))
     options.order = _choice(order, ORDERS, "order")
@@ -76,7 +77,7 @@ def eval_options(order="l2", window="none", strength=0.0):
 
 
 def _sh_rows(sh):
-    data = np.ascontiguousarray(sh, dtype=np.float32)
+    data = np.ascontiguousarray(as_array(sh, "sh"))
     if data.shape[-1:] != (SH_FLOATS,) or data.ndim not in (1, 2):
         raise ValueError("sh must have shape [27] or [M, 27] (got %s)" % (np.shape(sh),))
     return data.reshape(-1, SH_FLOATS), data.ndim == 1
@@ -85,11 +86,12 @@ def _sh_rows(sh):
 def eval_irradiance_ex(sh, normals, order="l2", window="none", strength=0.0):
     """Irradiance (r, g, b), as eval_irradiance gives it, under the evaluation options.
 
-    sh is [27] or [M, 27], normals [3] or [M, 3] (unit length is not required); one side may be single
-    and is then used for every row of the other. Returns [3] when both are single, else [M, 3]."""
+    sh is [27] or [M, 27] (channel-major), normals [3] or [M, 3] (unit length is not required); one side
+    may be single and is then used for every row of the other. order, window and strength as in
+    eval_options. Returns float32 [3] when both are single, else [M, 3]."""
     options = eval_options(order, window, strength)
     rows, single_sh = _sh_rows(sh)
-    n = np.ascontiguousarray(normals, dtype=np.float32)
+    n = np.ascontiguousarray(as_array(normals, "normals"))
     if n.shape[-1:] != (3,) or n.ndim not in (1, 2):
         raise ValueError("normals must have shape [3] or [M, 3] (got %s)" % (np.shape(normals),))
     single_n = n.ndim == 1
@@ -105,7 +107,8 @@ def eval_irradiance_ex(sh, normals, order="l2", window="none", strength=0.0):
 
 
 def apply_options(sh, order="l2", window="none", strength=0.0):
-    """A copy of sh ([27] or [M, 27]) rewritten so that plain eval_irradiance is the chosen evaluation."""
+    """A copy of sh ([27] or [M, 27], channel-major) rewritten so that plain eval_irradiance is the evaluation
+    chosen by order, window and strength (as in eval_options)."""
     options = eval_options(order, window, strength)
     rows, single = _sh_rows(sh)
     out = rows.copy()
@@ -117,7 +120,8 @@ def apply_options(sh, order="l2", window="none", strength=0.0):
 def min_irradiance(sh, order="l2", window="none", strength=0.0):
     """(min_rgb, normal): each channel's smallest irradiance over all unit normals under the options, and
     the unit normal where the smallest of the three occurs; [3] and [3] for sh [27], [M, 3] each for
-    [M, 27]. Exact to double rounding (the trust-region solution), not sampled."""
+    [M, 27]. order, window and strength as in eval_options. Exact to double rounding (the trust-region
+    solution), not sampled."""
     options = eval_options(order, window, strength)
     rows, single = _sh_rows(sh)
     minima = np.empty((len(rows), 3), dtype=np.float32)
@@ -128,8 +132,9 @@ def min_irradiance(sh, order="l2", window="none", strength=0.0):
 
 
 def nonnegative_window_strength(sh, order="l2"):
-    """The Sloan window strength the "nonnegative" window picks for sh under order: a float for sh [27],
-    an array [M] for [M, 27]; 0 when the irradiance is already non-negative, inf if no finite one does."""
+    """The Sloan window strength the "nonnegative" window picks for sh under order (as in eval_options): a
+    float for sh [27], an array [M] for [M, 27]; 0 when the irradiance is already non-negative, inf if no
+    finite one does."""
     options = eval_options(order)
     rows, single = _sh_rows(sh)
     out = np.empty(len(rows), dtype=np.float32)
