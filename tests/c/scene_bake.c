@@ -131,6 +131,29 @@ void test_scene_and_bake(void) {
     EXPECT_FAILS(tp_bake(scene, positions, 0, 0, &options, baked, 0));
     EXPECT_STATUS(tp_bake_plan(NULL, positions, 0, 2, &options, &plan, NULL, 0), TP_ERROR_INVALID_ARGUMENT);
     EXPECT_STATUS(tp_bake_plan(scene, positions, 0, 2, &options, NULL, NULL, 0), TP_ERROR_INVALID_ARGUMENT);
+    /* A summary that does not fit its buffer, unset struct sizes, no materials. */
+    {
+        char small[8];
+        const float black[3] = {0, 0, 0};
+        static const float tri[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        static const uint32_t tri_indices[3] = {0, 1, 2};
+        tp_material material;
+        uint32_t mesh_id = 77;
+        EXPECT_OK(tp_scene_set_sky_color(scene, black));
+        memset(&plan, 0, sizeof plan);
+        plan.struct_size = sizeof plan;
+        EXPECT_STATUS(tp_bake_plan(scene, positions, 0, 2, &options, &plan, small, sizeof small),
+                      TP_ERROR_BUFFER_TOO_SMALL);
+        CHECK(small[0] == '\0');
+        plan.struct_size = 0;
+        EXPECT_STATUS(tp_bake_plan(scene, positions, 0, 2, &options, &plan, NULL, 0), TP_ERROR_INVALID_ARGUMENT);
+        options.struct_size = 0;
+        EXPECT_STATUS(tp_bake(scene, positions, 0, 2, &options, baked, 0), TP_ERROR_INVALID_ARGUMENT);
+        tp_bake_options_init(&options);
+        tp_material_init(&material);
+        EXPECT_STATUS(tp_scene_add_mesh(scene, tri, 3, tri_indices, 1, &material, 0, NULL, &mesh_id),
+                      TP_ERROR_INVALID_ARGUMENT);
+    }
     options.rays = 0;
     EXPECT_STATUS(tp_bake(scene, positions, 0, 2, &options, baked, 0), TP_ERROR_INVALID_ARGUMENT);
     tp_bake_options_init(&options);
