@@ -21,7 +21,9 @@ check "SONAME" bash -c "readelf -d '$libdir/libtetprobe.so' | grep -q 'SONAME.*l
 check "config version file" test -f "$libdir/cmake/tetprobe/tetprobeConfigVersion.cmake"
 
 # find_package, from a build directory outside the repository's.
-check "find_package configure" cmake -S "$here" -B "$scratch/cmake-build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release
+version=$(sed -n 's/^CMAKE_PROJECT_VERSION:[A-Z]*=//p' "$build/CMakeCache.txt")
+check "find_package configure" cmake -S "$here" -B "$scratch/cmake-build" -DCMAKE_PREFIX_PATH="$prefix" \
+  -DCMAKE_BUILD_TYPE=Release -DTETPROBE_EXPECTED_VERSION="$version"
 check "find_package build" cmake --build "$scratch/cmake-build"
 check "find_package full" "$scratch/cmake-build/consumer_full" "$golden" full
 check "find_package runtime" "$scratch/cmake-build/consumer_runtime" "$golden" runtime
