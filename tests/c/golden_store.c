@@ -167,7 +167,7 @@ void test_golden_store_answers(void) {
 
 /* Batches against singles (packed, strided, on two threads), and every argument error of the queries. */
 void test_golden_store_queries_and_errors(void) {
-    enum { M = 5000 }; /* two threads split batches of 4,096 or more */
+    enum { M = 9000 }; /* two threads each take a range of at least 4,096 queries */
     static float points[3 * M], single[27 * M], batch[27 * M], padded_points[4 * M], padded_sh[28 * M];
     static int32_t single_hints[M], batch_hints[M], padded_hints[2 * M];
     static uint32_t single_probes[4 * M], batch_probes[4 * M];
@@ -213,10 +213,10 @@ void test_golden_store_queries_and_errors(void) {
 
     /* A batch with two points outside names the first and zeroes both. */
     world(points + 3 * 17, 2.0, 0.0, 0.0);
-    world(points + 3 * 4500, -1.0, 0.0, 0.0);
+    world(points + 3 * 8500, -1.0, 0.0, 0.0); /* in the second thread's range */
     EXPECT_STATUS(tp_store_interpolate_batch(store, M, points, 0, NULL, 0, batch, 0, &options), TP_ERROR_OUTSIDE);
     CHECK(mentions_number(tp_last_error(), 17));
-    CHECK(batch[27 * 17] == 0.0f && batch[27 * 4500 + 26] == 0.0f);
+    CHECK(batch[27 * 17] == 0.0f && batch[27 * 8500 + 26] == 0.0f);
     EXPECT_STATUS(tp_store_weights_batch(store, M, points, 0, NULL, 0, batch_probes, 0, batch_weights, 0, NULL),
                   TP_ERROR_OUTSIDE);
     CHECK(mentions_number(tp_last_error(), 17));
