@@ -10,6 +10,7 @@ PACKAGES=(
   mono-mcs mono-runtime
   clang-14 libclang-rt-14-dev
   libcgal-dev
+  gcc-mingw-w64-x86-64 g++-mingw-w64-x86-64 g++-aarch64-linux-gnu wine wine64 qemu-user
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
