@@ -167,23 +167,28 @@ _LIBRARY_NAME = {"darwin": "libtetprobe.dylib", "win32": "tetprobe.dll"}.get(sys
 
 
 def candidate_paths():
-    """Where the library is looked for, in order: $TETPROBE_LIBRARY, next to the package, the build tree."""
+    """Where the library is looked for, in order: $TETPROBE_LIBRARY, next to the package, and (only when
+    the package sits in the source tree) the tree's build/ directory; the system's search path comes last."""
     package_dir = os.path.dirname(os.path.abspath(__file__))
     repo_root = os.path.normpath(os.path.join(package_dir, "..", "..", ".."))
     paths = []
     if os.environ.get("TETPROBE_LIBRARY"):
         paths.append(os.environ["TETPROBE_LIBRARY"])
     paths.append(os.path.join(package_dir, _LIBRARY_NAME))
-    paths.append(os.path.join(repo_root, "build", _LIBRARY_NAME))
+    # An installed package must not pick up whatever build/ happens to lie two levels above it.
+    if os.path.exists(os.path.join(repo_root, "capi", "tetprobe.h")):
+        paths.append(os.path.join(repo_root, "build", _LIBRARY_NAME))
     return paths
 
 
-def check_version(library_version, package_version=PACKAGE_VERSION):
+def check_version(library_version, package_version=PACKAGE_VERSION, path=None):
     """Raises Error(VERSION) unless the library's (major << 16 | minor << 8 | patch) matches major.minor."""
     major, minor = (library_version >> 16) & 0xFFFF, (library_version >> 8) & 0xFF
     if (major, minor) != tuple(package_version[:2]):
-        raise Error(Status.VERSION, "libtetprobe %d.%d.%d does not match the tetprobe package %d.%d.%d" %
-                    ((major, minor, library_version & 0xFF) + tuple(package_version)))
+        where = " at %s" % path if path else ""
+        raise Error(Status.VERSION, "libtetprobe %d.%d.%d%s does not match the tetprobe package %d.%d.%d "
+                    "(major.minor must agree); set TETPROBE_LIBRARY to a matching build" %
+                    ((major, minor, library_version & 0xFF, where) + tuple(package_version)))
 
 
 def _load():
@@ -202,7 +207,8 @@ def _load():
     system = ctypes.util.find_library("tetprobe")
     if system:
         return ctypes.CDLL(system), system
-    raise ImportError("libtetprobe not found; set TETPROBE_LIBRARY (looked in: %s and the system)" % ", ".join(tried))
+    raise ImportError("libtetprobe not found; set TETPROBE_LIBRARY (looked in: %s and the system's library path)"
+                      % ", ".join(tried))
 
 
 def _declare(library):
@@ -215,10 +221,11 @@ def _declare(library):
 
 lib, library_path = _load()
 _declare(lib)
-check_version(lib.tp_version())
+check_version(lib.tp_version(), path=library_path)
 
 
 def last_error():
+    """The library's message of the last failure on this thread."""
     return lib.tp_last_error().decode("utf-8", "replace")
 
 

@@ -1,16 +1,23 @@
-"""SH helpers of the C ABI (the contract is in capi/tetprobe.h): 27 floats, channel-major."""
+"""SH helpers of the C ABI: evaluate and build the 27-float SH that stores and bakes use.
+
+The SH contract (capi/tetprobe.h): real, orthonormal SH of 3 bands (L2), 9 coefficients per colour
+channel, 27 float32 per probe, channel-major [r0..r8, g0..g8, b0..b8] (Unity's SphericalHarmonicsL2
+layout), in the order L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22 with Y1-1 ~ y, Y10 ~ z, Y11 ~ x in
+the caller's own frame. A probe holds the projection of incoming radiance (not pre-convolved);
+irradiance applies the clamped-cosine convolution (pi, 2pi/3, pi/4 per band).
+"""
 
 from ctypes import byref, c_float
 
 import numpy as np
 
-from ._arrays import vector
+from ._arrays import as_array, vector
 from ._native import (SH_FLOATS, SH_ORDER_L1, SH_ORDER_L2, SH_ORDER_ZH3, SH_WINDOW_NONE, SH_WINDOW_NONNEGATIVE,
                       SH_WINDOW_SLOAN, ShEvalOptions, check, lib)
 
 
 def eval_radiance(sh, direction):
-    """Radiance (r, g, b) arriving from unit `direction`."""
+    """Radiance rgb[3] float32 arriving from unit direction[3] (pointing away from the probe) for sh[27]."""
     out = np.empty(3, dtype=np.float32)
     check(lib.tp_sh_eval_radiance(vector(sh, SH_FLOATS, "sh"), vector(direction, 3, "direction"),
                                   out))
@@ -18,7 +25,8 @@ def eval_radiance(sh, direction):
 
 
 def eval_irradiance(sh, normal):
-    """Irradiance (r, g, b) on a surface with unit `normal` (clamped-cosine convolution)."""
+    """Irradiance rgb[3] float32 on a surface with unit normal[3] lit by the radiance sh[27] (clamped-cosine
+    convolution)."""
     out = np.empty(3, dtype=np.float32)
     check(lib.tp_sh_eval_irradiance(vector(sh, SH_FLOATS, "sh"), vector(normal, 3, "normal"),
                                     out))
@@ -26,14 +34,16 @@ def eval_irradiance(sh, normal):
 
 
 def ambient(rgb, sh=None):
-    """sh[27] (a new zero array when None) plus uniform radiance rgb from every direction."""
+    """A new sh[27] float32: sh[27] (None = zeros; not modified) plus uniform radiance rgb[3] arriving from
+    every direction."""
     out = np.zeros(SH_FLOATS, dtype=np.float32) if sh is None else vector(sh, SH_FLOATS, "sh").copy()
     check(lib.tp_sh_add_ambient(out, vector(rgb, 3, "rgb")))
     return out
 
 
 def directional(direction, rgb, sh=None):
-    """sh[27] plus a directional light travelling along `direction` with irradiance rgb facing it."""
+    """A new sh[27] float32: sh[27] (None = zeros; not modified) plus a directional light travelling along
+    unit direction[3] whose irradiance on a surface facing it is rgb[3]."""
     out = np.zeros(SH_FLOATS, dtype=np.float32) if sh is None else vector(sh, SH_FLOATS, "sh").copy()
     check(lib.tp_sh_add_directional(out, vector(direction, 3, "direction"),
                                     vector(rgb, 3, "rgb")))
@@ -56,7 +66,8 @@ def _choice(value, table, name):
 def eval_options(order="l2", window="none", strength=0.0):
     """A tp_sh_eval_options struct: order "l2" (27 floats), "l1" (bands 0-1) or "zh3" (L1 plus a zonal L2
     term estimated from it); window "none", "sloan" (band l scaled by 1 / (1 + strength (l(l+1))^2)) or
-    "nonnegative" (the smallest such strength keeping the irradiance >= 0; strength not read)."""
+    "nonnegative" (the smallest such strength keeping the irradiance >= 0; strength not read); strength
+    is a float >= 0."""
     options = ShEvalOptions()
     check(lib.tp_sh_eval_options_init(byref(options)))
     options.order = _choice(order, ORDERS, "order")
@@ -66,7 +77,7 @@ def eval_options(order="l2", window="none", strength=0.0):
 
 
 def _sh_rows(sh):
-    data = np.ascontiguousarray(sh, dtype=np.float32)
+    data = np.ascontiguousarray(as_array(sh, "sh"))
     if data.shape[-1:] != (SH_FLOATS,) or data.ndim not in (1, 2):
         raise ValueError("sh must have shape [27] or [M, 27] (got %s)" % (np.shape(sh),))
     return data.reshape(-1, SH_FLOATS), data.ndim == 1
@@ -75,11 +86,12 @@ def _sh_rows(sh):
 def eval_irradiance_ex(sh, normals, order="l2", window="none", strength=0.0):
     """Irradiance (r, g, b), as eval_irradiance gives it, under the evaluation options.
 
-    sh is [27] or [M, 27], normals [3] or [M, 3] (unit length is not required); one side may be single
-    and is then used for every row of the other. Returns [3] when both are single, else [M, 3]."""
+    sh is [27] or [M, 27] (channel-major), normals [3] or [M, 3] (unit length is not required); one side
+    may be single and is then used for every row of the other. order, window and strength as in
+    eval_options. Returns float32 [3] when both are single, else [M, 3]."""
     options = eval_options(order, window, strength)
     rows, single_sh = _sh_rows(sh)
-    n = np.ascontiguousarray(normals, dtype=np.float32)
+    n = np.ascontiguousarray(as_array(normals, "normals"))
     if n.shape[-1:] != (3,) or n.ndim not in (1, 2):
         raise ValueError("normals must have shape [3] or [M, 3] (got %s)" % (np.shape(normals),))
     single_n = n.ndim == 1
@@ -95,7 +107,8 @@ def eval_irradiance_ex(sh, normals, order="l2", window="none", strength=0.0):
 
 
 def apply_options(sh, order="l2", window="none", strength=0.0):
-    """A copy of sh ([27] or [M, 27]) rewritten so that plain eval_irradiance is the chosen evaluation."""
+    """A copy of sh ([27] or [M, 27], channel-major) rewritten so that plain eval_irradiance is the evaluation
+    chosen by order, window and strength (as in eval_options)."""
     options = eval_options(order, window, strength)
     rows, single = _sh_rows(sh)
     out = rows.copy()
@@ -107,7 +120,8 @@ def apply_options(sh, order="l2", window="none", strength=0.0):
 def min_irradiance(sh, order="l2", window="none", strength=0.0):
     """(min_rgb, normal): each channel's smallest irradiance over all unit normals under the options, and
     the unit normal where the smallest of the three occurs; [3] and [3] for sh [27], [M, 3] each for
-    [M, 27]. Exact to double rounding (the trust-region solution), not sampled."""
+    [M, 27]. order, window and strength as in eval_options. Exact to double rounding (the trust-region
+    solution), not sampled."""
     options = eval_options(order, window, strength)
     rows, single = _sh_rows(sh)
     minima = np.empty((len(rows), 3), dtype=np.float32)
@@ -118,8 +132,9 @@ def min_irradiance(sh, order="l2", window="none", strength=0.0):
 
 
 def nonnegative_window_strength(sh, order="l2"):
-    """The Sloan window strength the "nonnegative" window picks for sh under order: a float for sh [27],
-    an array [M] for [M, 27]; 0 when the irradiance is already non-negative, inf if no finite one does."""
+    """The Sloan window strength the "nonnegative" window picks for sh under order (as in eval_options): a
+    float for sh [27], an array [M] for [M, 27]; 0 when the irradiance is already non-negative, inf if no
+    finite one does."""
     options = eval_options(order)
     rows, single = _sh_rows(sh)
     out = np.empty(len(rows), dtype=np.float32)
