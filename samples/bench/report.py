@@ -113,23 +113,31 @@ class Report:
             out.append("- damping: %s" % doc["damping"]["rule"])
         out.append("")
         for scene in doc.get("scenes", []):
-            out += ["### %s" % scene.get("name", "?"), "",
-                    "%s probes (%s); %s query points; reference noise (a second reference, another seed): %s." % (
-                        num(scene.get("probes")), scene.get("probe_source", "?"), num(scene.get("queries")),
-                        num(scene.get("reference_noise"))), ""]
-            rows = []
-            for m in scene.get("methods", []):
-                rows.append([m.get("label", m.get("id")), num(m.get("probes")), num(m.get("bytes")),
-                             num(m.get("rms_error")), num(m.get("max_error")), num(m.get("worst_jump")),
-                             num(m.get("ns_per_query"))])
-                if m.get("skipped"):
-                    self.not_run.append(("%s, %s" % (scene.get("name"), m.get("label", m.get("id"))), m["skipped"]))
             path = scene.get("path") or {}
-            rows.append(["reference (baked at each point)", "-", "-", "0", "0", num(path.get("reference_worst_jump")),
-                         "-"])
+            out += ["### %s" % scene.get("name", "?"), "",
+                    "%s probes (%s); %s query points%s; reference noise (a second reference, another seed): %s; "
+                    "path of %s frames%s." % (
+                        num(scene.get("probes")), scene.get("probe_source", "?"), num(scene.get("queries")),
+                        " (%s)" % scene["query_rule"] if scene.get("query_rule") else "",
+                        num(scene.get("reference_noise")), num(path.get("frames")),
+                        ", %s of them inside geometry or crossing a surface" % num(path["bad_frames"])
+                        if path.get("bad_frames") else ""), ""]
+            rows, notes = [], []
+            for m in scene.get("methods", []):
+                label = m.get("label", m.get("id"))
+                rows.append([label, num(m.get("probes")), num(m.get("bytes")), num(m.get("rms_error")),
+                             num(m.get("max_error")), num(m.get("path_rms_error")), num(m.get("worst_jump")),
+                             num(m.get("ns_per_query"))])
+                if m.get("note"):
+                    notes.append("- %s: %s" % (label, m["note"]))
+                if m.get("skipped"):
+                    self.not_run.append(("%s, %s" % (scene.get("name"), label), m["skipped"]))
+            rows.append(["reference (baked at each point)", "-", "-", "0", "0", "0",
+                         num(path.get("reference_worst_jump")), "-"])
             out += table([("method", "<"), ("probes", ">"), ("bytes", ">"), ("RMS error", ">"),
-                          ("max error", ">"), ("worst jump along the path", ">"), ("ns/query", ">")], rows)
-            out.append("")
+                          ("max error", ">"), ("RMS error on the path", ">"), ("worst jump along the path", ">"),
+                          ("ns/query", ">")], rows)
+            out += [""] + notes + ([""] if notes else [])
             out += self.plot("methods_error_vs_time", scene) + [""]
             out += self.plot("slices", scene) + [""]
             out += self.plot("popping", scene) + [""]
@@ -144,6 +152,8 @@ class Report:
             return out + not_run(self.missing["precision"]) + [""]
         if doc.get("rule"):
             out += ["Winner rule: %s" % doc["rule"], ""]
+        if doc.get("sh_options"):
+            out += ["SH evaluation: %s" % doc["sh_options"], ""]
         for scene in doc.get("scenes", []):
             out += ["### %s" % scene.get("name", "?"), ""]
             rows = [[r.get("precision"), r.get("layout"), r.get("order"), r.get("window"), num(r.get("rms_error")),
@@ -154,7 +164,9 @@ class Report:
                           ("bytes/probe", ">")], rows)
             out.append("")
             for d in scene.get("decisions", []):
-                out.append("- %s: **%s** (%s)" % (d.get("question"), d.get("winner"), d.get("why", "")))
+                tied = [t for t in d.get("tied", []) if t != d.get("winner")]
+                out.append("- %s: **%s** (%s)%s" % (d.get("question"), d.get("winner"), d.get("why", ""),
+                                                    "; tied within the noise: " + ", ".join(tied) if tied else ""))
             out.append("")
         return out
 
