@@ -4,7 +4,9 @@ Usage: /usr/bin/python3 samples/bench/report.py DIR
 
 Reads what `tetprobe_bench ... --out DIR` and samples/bench/scipy_locate.py wrote into DIR
 (methods.json, precision.json, locate.json, scipy_locate.json, bake.json, probes.json, and the store
-benchmark's markdown store.md) and writes DIR/report.md and the plots (report_plots.py) beside it.
+benchmark's markdown store.md) and writes DIR/report.md and the plots (report_plots.py) beside it,
+and DIR/readme_section.md, the README's digest (images under docs/bench/, where `make bench-docs`
+copies them).
 A part whose file is missing, unreadable or marked "not_run", and a peer a part could not run, is
 said in the report ("not run: why"), never dropped. Needs only the standard library; the plots need
 matplotlib (without it the report says so).
@@ -360,6 +362,74 @@ class Report:
         return "\n".join(out + [""] + body).rstrip() + "\n"
 
 
+def readme_section(report, images="docs/bench/"):
+    """The README's digest of a report: the headline ratios and the key tables, images from `images`."""
+    out = ["Machine: " + report.machine()[0].split("Machine: ", 1)[1] if report.machine() else "", ""]
+    ratios = report.ratios()
+    if ratios:
+        out += ["**Headline ratios**", ""] + table([("ratio", "<"), ("this run", ">")],
+                                                  [(r, v) for r, v, _ in ratios]) + [""]
+    methods = report.docs.get("methods")
+    for scene in (methods or {}).get("scenes", [])[:1]:
+        out += ["**Interpolation methods, %s** (error against a bake at every query point, relative to the mean "
+                "irradiance; popping: worst frame-to-frame jump along a path)" % scene.get("name"), ""]
+        rows = [[m.get("label", m.get("id")), num(m.get("bytes")), num(m.get("rms_error")), num(m.get("max_error")),
+                 num(m.get("worst_jump")), num(m.get("ns_per_query"))] for m in scene.get("methods", [])]
+        out += table([("method", "<"), ("bytes", ">"), ("RMS error", ">"), ("max error", ">"),
+                      ("worst jump", ">"), ("ns/query", ">")], rows) + [""]
+        slug = report_plots._slug(scene.get("name"))
+        out += ["![error vs time](%smethods_error_vs_time_%s.png) ![popping](%spopping_%s.png)" % (
+            images, slug, images, slug), "", "![slices](%sslices_%s.png)" % (images, slug), ""]
+    locate = report.docs.get("locate")
+    if locate:
+        sizes = locate.get("sizes", [])
+        scipy = {s["probes"]: s for s in (report.docs.get("scipy_locate") or {}).get("sizes", [])}
+        keys = []
+        for size in sizes:
+            for r in size["rows"]:
+                if (r["method"], r["query"], r["start"]) not in keys:
+                    keys.append((r["method"], r["query"], r["start"]))
+        rows = []
+        for key in keys:
+            cells = []
+            for size in sizes:
+                match = [r for r in size["rows"] if (r["method"], r["query"], r["start"]) == key]
+                cells.append("%s (%s steps)" % (num(match[0]["ns_per_query"]), num(match[0]["mean_steps"]))
+                             if match and match[0].get("mean_steps") is not None
+                             else num(match[0]["ns_per_query"]) if match else "-")
+            rows.append(["%s %s, start: %s" % key] + cells)
+        for query in ("coherent", "teleport"):
+            cells = []
+            for size in sizes:
+                match = [r for r in scipy.get(size["probes"], {}).get("rows", []) if r["query"] == query]
+                cells.append(num(match[0]["ns_per_query"]) if match else "-")
+            rows.append(["scipy find_simplex %s, one vectorised call" % query] + cells)
+        out += ["**Locate** (ns per query, mean walk steps; random probes in a 10 m box)", ""]
+        out += table([("method, query", "<")] + [("%s probes" % num(s["probes"]), ">") for s in sizes], rows) + [""]
+    bake = report.docs.get("bake")
+    if bake:
+        out += ["**Bake**: SH error against a high-sample reference vs bake time, one curve per bounce count "
+                "(dashed: emitter sampling off)", "", "![bake](%sbake_error_vs_time.png)" % images, ""]
+        rows = [[os.path.basename(c["scene"]), "%s / %s" % (num(c["on"]["shadow_casters"]),
+                                                            num(c["off"]["shadow_casters"])),
+                 num(c["on"]["seconds"]), num(c["off"]["seconds"]), num(c["max_abs_difference"]),
+                 num(c["identical_bytes"])] for c in bake.get("culling", [])]
+        out += table([("culling", "<"), ("shadow casters on / off", ">"), ("bake s, on", ">"), ("bake s, off", ">"),
+                      ("max SH difference", ">"), ("same bytes", ">")], rows) + [""]
+    probes = report.docs.get("probes")
+    if probes:
+        out += ["**Probe count** (%s, grid of probes, spacing halved; noise floor %s)" % (
+            os.path.basename(str(probes.get("scene"))), num(probes.get("noise_floor", {}).get("rms_error"))), ""]
+        rows = [[num(l["probes"]), num(l["spacing"][0]), num(l["rms_error"]), num(l["fast_bytes"]),
+                 num(l["compact_bytes"])] for l in probes.get("levels", [])]
+        out += table([("probes", ">"), ("spacing x (m)", ">"), ("RMS error", ">"), ("fast bytes", ">"),
+                      ("compact bytes", ">")], rows)
+        out += ["", "![probe count](%sprobe_convergence.png)" % images, ""]
+    if report.not_run:
+        out += ["Not run in this report: " + "; ".join("%s (%s)" % (w, y) for w, y in report.not_run) + ".", ""]
+    return "\n".join(out).rstrip() + "\n"
+
+
 def main(argv):
     if len(argv) != 2:
         print("usage: report.py DIR", file=sys.stderr)
@@ -370,6 +440,8 @@ def main(argv):
     with open(path + ".tmp", "w") as f:
         f.write(text)
     os.replace(path + ".tmp", path)
+    with open(os.path.join(argv[1], "readme_section.md"), "w") as f:
+        f.write(readme_section(report))
     print("report: %s (%d plots; not run: %d)" % (path, len(report.plots.written), len(report.not_run)))
     return 0
 

@@ -65,6 +65,11 @@ def test_every_section_and_plot_of_a_complete_run(tmp_path):
     for label in ("tetrahedral (fast)", "grid, equal memory", "4 nearest, damped"):
         assert "| %s |" % label in _section(text, "## 1. Interpolation methods")
     assert "| 1 | 2 |" in _section(text, "## Store benchmark")
+    # The README's digest links the plots where `make bench-docs` puts them, and repeats the ratios.
+    digest = (tmp_path / "readme_section.md").read_text()
+    for name in ("methods_error_vs_time_fixture_rooms.png", "bake_error_vs_time.png", "probe_convergence.png"):
+        assert "(docs/bench/%s)" % name in digest
+    assert "| grid error / ours at equal memory (RMS), fixture rooms | 1.4x |" in digest
 
 
 def test_headline_ratios_come_from_the_parts(tmp_path, no_plots):
