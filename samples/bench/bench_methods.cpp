@@ -79,6 +79,7 @@
 #include "bench_timing.h"
 #include "grid_peer.h"
 #include "knn_peer.h"
+#include "method_json.h"
 #include "method_scene.h"
 
 #include "capi/tetprobe.h"
@@ -101,7 +102,9 @@ using Json = nlohmann::ordered_json;
 constexpr double kDampingFrames = 6.0;
 constexpr double kFrameSeconds = 1.0 / 60.0;
 // Single queries timed per repetition (the path, repeated).
-constexpr size_t kTimedQueries = 200000;
+// A timed run lasts about this long (medians of 5 runs), at most kMaxTimedQueries queries.
+constexpr double kTimedSeconds = 0.05;
+constexpr size_t kMaxTimedQueries = 200000;
 
 // A method answers a point with 27 SH floats. point_query answers independent points (a still object);
 // path_query follows one moving object frame after frame (hint, damping state) and is reset at the path's start.
@@ -169,9 +172,13 @@ Json evaluate_method(const MethodScene& s, const MethodSettings& settings, Metho
 
     // Single queries along the path, repeated; the state (hint, damping) runs on across repetitions.
     const size_t frames = s.path.size() / 3;
-    const size_t repetitions = std::max<size_t>(1, (settings.quick ? kTimedQueries / 100 : kTimedQueries) / frames);
     float sh[27], sink = 0;
     m.reset_path();
+    const size_t repetitions = repetitions_for(
+        [&] {
+            for (size_t f = 0; f < frames; ++f) m.path_query(&s.path[3 * f], sh);
+        },
+        settings.quick ? kTimedSeconds / 50 : kTimedSeconds, kMaxTimedQueries / frames + 1);
     const double seconds = median_seconds([&] {
         const Clock::time_point start = Clock::now();
         for (size_t r = 0; r < repetitions; ++r)
@@ -356,6 +363,8 @@ Json bench_scene(const std::string& path, const MethodSettings& settings) {
 
 }  // namespace
 
+namespace bench {
+
 Json method_bake_json(const MethodSettings& settings) {
     return {{"rays", settings.rays},
             {"bounces", settings.bounces},
@@ -381,6 +390,8 @@ int write_json(const std::string& dir, const char* name, const Json& j) {
     return 0;
 }
 
+}  // namespace bench
+
 int run_methods_bench(int argc, char** argv) {
     const MethodArgs args = parse_method_args(
         argc, argv, {"samples/scenes/two_rooms.json", "samples/scenes/cornell_box.json", "samples/scenes/race_track.json"});
@@ -401,7 +412,8 @@ int run_methods_bench(int argc, char** argv) {
     j["popping"] = "worst_jump: the largest |E(frame) - E(frame - 1)| over the path's frames and the 6 axis normals, "
                    "divided by mean_irradiance";
     j["timing"] = "ns_per_query: single queries along the path (one object, its hint or damping state carried), "
-                  "the path repeated to about 200,000 queries, median of 5 runs";
+                  "the path repeated for about 0.05 s (at most 200,000 queries), median of 5 runs; "
+                  "every method is called through the same std::function wrapper";
     j["damping"] = {{"time_constant_frames", kDampingFrames},
                     {"frame_seconds", kFrameSeconds},
                     {"alpha", TemporalDamping(kDampingFrames).alpha()},

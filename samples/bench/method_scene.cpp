@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -253,6 +254,18 @@ MethodArgs parse_method_args(int argc, char** argv, const std::vector<std::strin
         for (const std::string& name : default_scenes)
             if (std::ifstream(name)) args.scenes.push_back(name);
     return args;
+}
+
+}  // namespace bench
+
+namespace bench {
+
+size_t repetitions_for(const std::function<void()>& one_pass, double target_seconds, size_t max_repetitions) {
+    const auto start = std::chrono::steady_clock::now();
+    one_pass();
+    const double pass = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double wanted = pass > 0 ? target_seconds / pass : double(max_repetitions);
+    return std::max<size_t>(1, std::min<size_t>(max_repetitions, size_t(wanted)));
 }
 
 }  // namespace bench

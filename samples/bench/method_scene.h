@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -85,5 +86,13 @@ struct ErrorStats {
     }
     double rms() const { return count ? std::sqrt(sum_squares / double(count)) : 0.0; }
 };
+
+}  // namespace bench
+
+namespace bench {
+
+// Repetitions of a timed loop so that one run takes about target_seconds (at least 1, at most
+// max_repetitions): one untimed pass sets the scale, so a slow method is not run for minutes.
+size_t repetitions_for(const std::function<void()>& one_pass, double target_seconds, size_t max_repetitions);
 
 }  // namespace bench

@@ -90,7 +90,7 @@ inline void window_bands(float sh[27], float lambda) {
 inline float min_over_sphere(const float sh[27], float min_rgb[3], float normal[3]) {
     float lowest = INFINITY;
     for (int c = 0; c < 3; ++c) min_rgb[c] = INFINITY;
-    const int count = 256;
+    const int count = 64;
     for (int i = 0; i < count; ++i) {
         const float z = 1 - 2 * (i + 0.5f) / count, r = std::sqrt(std::max(0.0f, 1 - z * z));
         const float phi = float(i) * 2.39996323f;
@@ -125,7 +125,7 @@ inline tp_status tp_sh_apply_options(float sh[27], const tp_sh_eval_options* opt
         if (sh_options_shim::min_over_sphere(sh, min_rgb, n) < 0) {
             float lo = 0, hi = 1;
             float trial[27];
-            for (int step = 0; step < 20; ++step) {
+            for (int step = 0; step < 12; ++step) {
                 const float mid = 0.5f * (lo + hi);
                 std::copy(sh, sh + 27, trial);
                 sh_options_shim::window_bands(trial, mid);
