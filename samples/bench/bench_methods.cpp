@@ -3,7 +3,7 @@
 // directly at each point (the same rays, bounces and seed as the probes: the same estimator). Writes
 // DIR/methods.json and DIR/precision.json (DIR defaults to build/bench) for samples/bench/report.py.
 //
-// JSON schema (stable; "?" marks a field that may be null when a peer cannot run, with "skipped" saying why).
+// JSON schema (stable: fields may be added, none renamed or removed).
 // Irradiance is a scalar: the Rec. 709 luminance 0.2126 R + 0.7152 G + 0.0722 B of E(n) (tp_sh_eval_irradiance).
 // An error is |E_method(p, n) - E_reference(p, n)| over every query point p and each of the 6 axis normals n,
 // divided by "mean_irradiance" (the mean of E_reference over the same points and normals): rms_error is the
@@ -21,9 +21,13 @@
 //     "probe_bounds": {"min": [3], "max": [3]},
 //     "query_box": {"min": [3], "max": [3]},   // probe bounds; an axis thinner than 1% of the diagonal widened to +-0.5
 //     "queries": int,                          // uniform random points in query_box (seeded)
-//     "reference_noise": float,                // rms_error (as defined above) of a second reference with another seed
+//     "query_rule": str,                       // points inside geometry or within 0.5 of a point/spot light are redrawn
+//     "bake_seconds": float,                   // time to bake probes and references of this scene
+//     "reference_noise": float,                // rms_error (as defined above) of a second reference with another
+//                                              // seed against the first (the noise of both references)
 //     "mean_irradiance": float,
 //     "path": {"frames": int, "points": [[x, y, z], ...], "normal": [3],
+//              "bad_frames": int,     // frames inside geometry or crossing a surface (0 unless no loop avoided them)
 //              "reference_trace": [E per frame for "normal", relative to mean_irradiance],
 //              "reference_worst_jump": float, // the reference's own worst frame-to-frame jump (see "popping")
 //              "reference_note": str},
@@ -31,10 +35,12 @@
 //       "id": "tetrahedral_fast" | "tetrahedral_compact" | "grid_equal_count" | "grid_equal_memory"
 //             | "knn4" | "knn4_damped",
 //       "label": str,              // human-readable name for tables and legends
+//       "note": str,               // only where a metric needs explaining (knn4_damped)
 //       "probes": int,             // probes this method blends (grids: nx*ny*nz)
 //       "grid": [nx, ny, nz] | null,
 //       "bytes": int,              // bytes of the method's run-time data
 //       "rms_error": float, "max_error": float,
+//       "path_rms_error": float, "path_max_error": float,  // the same errors at the path's frames (damping included)
 //       "worst_jump": float,       // popping along the path (same definition as reference_worst_jump)
 //       "ns_per_query": float,     // single queries along the path, each with its hint/state, median of 5 runs
 //       "at_probes_max_error": float | null,  // max error at the probe positions against the probes' own bake
@@ -42,6 +48,7 @@
 //     }],
 //     "slice": {"axis": "y", "height": float, "normal": [3],
 //               "x": [min, max], "z": [min, max], "nx": int, "nz": int,   // row-major: row = z index, column = x index
+//               "cells": str,       // values at the centres of nx x nz equal cells spanning x and z
 //               "reference": [nx*nz floats, E relative to mean_irradiance],
 //               "methods": {"<method id>": [nx*nz floats], ...}}
 //   }]
@@ -50,10 +57,11 @@
 // precision.json (one scene, two rooms, unless --scene is given; the same queries, path and reference as methods.json)
 // {
 //   "schema": "tetprobe-bench-precision/1", "quick": bool, "bake": {...as above}, "error": str,
+//   "sh_options": str,            // whether the library's tp_sh_eval_options or the benchmark's temporary shim ran
 //   "rule": str,                  // how a winner is chosen: error first (ties within "tie_margin"), then ns, then bytes
 //   "scenes": [{
 //     "name": str, "file": str, "probes": int, "queries": int, "mean_irradiance": float,
-//     "reference_noise": float, "tie_margin": float,
+//     "reference_noise": float, "tie_margin": float,   // tie_margin: that of the "overall" decision
 //     "rows": [{
 //       "id": str,                 // e.g. "half_fast_L2_none"
 //       "precision": "float32" | "half", "layout": "fast" | "compact",
@@ -64,13 +72,16 @@
 //       "bytes_per_probe": float,   // the store's bytes per probe if its SH section held only what the order reads
 //                                   // (L1 and ZH3: 12 coefficients; L2: 27) at this precision
 //       "store_bytes_per_probe": float, // the store as built today (27 coefficients)
-//       "at_probes_max_error": float    // at the probe positions against their own bake (float32: exactly 0)
+//       "at_probes_max_error": float    // at the probe positions against their own bake evaluated with the same
+//                                       // options (float32: exactly 0; half: the rounding to half)
 //     }],
 //     "decisions": [{
 //       "question": "precision and layout" | "order and window" | "overall",
 //       "candidates": [row ids],
 //       "winner": row id,
-//       "why": str
+//       "why": str,
+//       "tied": [row ids],         // rows within the noise of the lowest-error row (paired test, see "rule")
+//       "tie_margin": float        // the largest paired margin among the tied rows, on the RMS scale
 //     }]
 //   }]
 // }
@@ -375,8 +386,9 @@ Json method_bake_json(const MethodSettings& settings) {
 }
 
 int write_json(const std::string& dir, const char* name, const Json& j) {
-    std::filesystem::create_directories(dir);
     const std::string path = dir + "/" + name, temporary = path + ".tmp";
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
     {
         std::ofstream out(temporary);
         out << j.dump(1) << "\n";
@@ -385,7 +397,11 @@ int write_json(const std::string& dir, const char* name, const Json& j) {
             return 1;
         }
     }
-    std::filesystem::rename(temporary, path);
+    std::filesystem::rename(temporary, path, error);
+    if (error) {
+        std::fprintf(stderr, "cannot rename %s to %s: %s\n", temporary.c_str(), path.c_str(), error.message().c_str());
+        return 1;
+    }
     std::printf("\nwrote %s\n", path.c_str());
     return 0;
 }
