@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 
-.PHONY: deps build demo test test-fast sanitize tsan fuzz fuzz-short bench clean
+.PHONY: deps build demo test test-fast sanitize tsan fuzz fuzz-short cross bench clean
 
 deps:
 	bash .ci/install-deps.sh
@@ -15,8 +15,9 @@ build: deps
 demo: build
 	$(BUILD)/samples/tetprobe demo --out $(BUILD)/demo
 
-# Every test: the normal build, the ASan+UBSan build of the whole suite, and a short fuzz run.
-test: test-fast sanitize tsan fuzz-short
+# Every test: the normal build, the ASan+UBSan build of the whole suite, a short fuzz run, and the
+# run-time library cross-built for Windows x64 and Linux aarch64, its C harness run under wine and qemu.
+test: test-fast sanitize tsan fuzz-short cross
 
 test-fast: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
@@ -49,6 +50,10 @@ fuzz-short: fuzz-build
 FUZZ_SECONDS ?= 600
 fuzz: fuzz-build
 	bash tests/fuzz/run.sh $(BUILD)-fuzz $(FUZZ_SECONDS)
+
+# Windows x64 (MinGW-w64, run under wine) and Linux aarch64 (run under qemu-user): the run-time library.
+cross: deps
+	bash .ci/cross.sh $(BUILD) $(JOBS)
 
 bench: build
 	$(BUILD)/samples/tetprobe_bench

@@ -6,9 +6,11 @@ PACKAGES=(
   libtet1.5-dev libeigen3-dev libembree-dev catch2
   nlohmann-json3-dev libtinyobjloader-dev libstb-dev
   python3 python3-numpy python3-scipy python3-matplotlib python3-pytest
+  python3-pip python3-setuptools python3-wheel
   mono-mcs mono-runtime
   clang-14 libclang-rt-14-dev
   libcgal-dev
+  gcc-mingw-w64-x86-64 g++-mingw-w64-x86-64 g++-aarch64-linux-gnu wine wine64 qemu-user
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

@@ -1,22 +1,17 @@
 // C ABI of the run-time store: load, save, inspect and query.
 #include "boundary.h"
 #include "strides.h"
+#include "core/file_io.h"
 #include "core/store.h"
 #include "store_handle.h"
 
-#include <cerrno>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <string>
 #include <type_traits>
 #include <vector>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 namespace tetprobe {
 
@@ -30,11 +25,6 @@ template <class T>
 T* strided(T* base, size_t index, size_t stride) {
     using Byte = typename std::conditional<std::is_const<T>::value, const unsigned char, unsigned char>::type;
     return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + index * stride);
-}
-
-
-std::string system_error(const std::string& what, const char* path) {
-    return what + " '" + path + "': " + std::strerror(errno);
 }
 
 // Positions are validated once, before any query of a batch runs.
@@ -80,70 +70,6 @@ void to_input_probes(const Store& store, const Location& loc, uint32_t probes[4]
     for (int k = 0; k < 4; ++k) {
         probes[k] = store.probe_source(loc.probes[k]);
         weights[k] = loc.weights[k];
-    }
-}
-
-void write_all(int fd, const uint8_t* data, size_t size, const char* path) {
-    while (size > 0) {
-        const ssize_t written = ::write(fd, data, size);
-        if (written < 0) {
-            if (errno == EINTR) continue;
-            throw Error(Status::io, system_error("cannot write", path));
-        }
-        data += written;
-        size -= size_t(written);
-    }
-}
-
-std::vector<uint8_t> read_file(const char* path) {
-    FILE* file = std::fopen(path, "rb");
-    if (!file) throw Error(Status::io, system_error("cannot open", path));
-    std::vector<uint8_t> bytes;
-    uint8_t buffer[1 << 16];
-    for (;;) {
-        const size_t n = std::fread(buffer, 1, sizeof buffer, file);
-        bytes.insert(bytes.end(), buffer, buffer + n);
-        if (n < sizeof buffer) break;
-    }
-    const bool failed = std::ferror(file) != 0;
-    std::fclose(file);
-    if (failed) throw Error(Status::io, std::string("cannot read '") + path + "'");
-    return bytes;
-}
-
-// Writes the bytes to a temporary file next to path, flushes it to disk and renames it over path,
-// so that path holds either the old file or the whole new one, never a part.
-void write_file_atomically(const char* path, const uint8_t* data, size_t size) {
-    std::string temp = std::string(path) + ".tmp.XXXXXX";
-    std::vector<char> name(temp.begin(), temp.end());
-    name.push_back('\0');
-    const int fd = ::mkstemp(name.data());
-    if (fd < 0) throw Error(Status::io, system_error("cannot create a temporary file for", path));
-    bool open = true;
-    try {
-        write_all(fd, data, size, path);
-        if (::fchmod(fd, 0644) != 0) throw Error(Status::io, system_error("cannot set permissions of", path));
-        if (::fsync(fd) != 0) throw Error(Status::io, system_error("cannot flush", path));
-        open = false;
-        if (::close(fd) != 0) throw Error(Status::io, system_error("cannot close", path));
-    } catch (...) {
-        if (open) ::close(fd);
-        ::unlink(name.data());
-        throw;
-    }
-    if (std::rename(name.data(), path) != 0) {
-        const std::string message = system_error("cannot rename the temporary file onto", path);
-        ::unlink(name.data());
-        throw Error(Status::io, message);
-    }
-    // Make the rename itself durable (best effort: some file systems refuse fsync on directories).
-    std::string directory(path);
-    const size_t slash = directory.find_last_of('/');
-    directory = slash == std::string::npos ? "." : (slash == 0 ? "/" : directory.substr(0, slash));
-    const int dir_fd = ::open(directory.c_str(), O_RDONLY);
-    if (dir_fd >= 0) {
-        ::fsync(dir_fd);
-        ::close(dir_fd);
     }
 }
 

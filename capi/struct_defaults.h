@@ -4,6 +4,7 @@
 
 #include "capi/tetprobe.h"
 #include "core/option_defaults.h"
+#include "core/sh_eval_options.h"
 
 #include <cmath>
 
@@ -48,6 +49,17 @@ inline tp_light default_light() {
     light.inner_angle = 30.0f;
     light.outer_angle = 45.0f;
     return light;
+}
+
+// L2, no window: the run time's ShEvalOptions defaults.
+inline tp_sh_eval_options default_sh_eval_options() {
+    const ShEvalOptions defaults;
+    tp_sh_eval_options options{};
+    options.struct_size = sizeof(tp_sh_eval_options);
+    options.order = uint32_t(defaults.order);
+    options.window = uint32_t(defaults.window);
+    options.window_strength = defaults.window_strength;
+    return options;
 }
 
 }  // namespace tetprobe

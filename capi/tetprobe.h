@@ -248,6 +248,66 @@ TP_API tp_status tp_sh_add_ambient(float sh[27], const float rgb[3]);
     rgb (a delta of radiance arriving from -direction). */
 TP_API tp_status tp_sh_add_directional(float sh[27], const float direction[3], const float rgb[3]);
 
+/* SH evaluation choices. The order says which bands an evaluation uses; the window (Sloan's deringing)
+   then scales band l by w_l = 1 / (1 + s (l (l + 1))^2), the least-squares fit penalised by s times the
+   squared Laplacian (P.-P. Sloan, "Deringing Spherical Harmonics", SIGGRAPH Asia 2017 technical briefs):
+   band 0 is never changed and s = 0 is the identity. Every choice is a rewrite of the 27 coefficients
+   (tp_sh_apply_options), so an engine may apply it once per probe and keep its plain L2 evaluation. */
+#define TP_SH_ORDER_L2  0u  /* all 27 floats (the default) */
+#define TP_SH_ORDER_L1  1u  /* bands 0 and 1 only: 12 floats (4 per channel) */
+/** L1 plus a zonal L2 term estimated from the L1 data (T. Roughton, P.-P. Sloan et al., "ZH3: Quadratic
+    Zonal Harmonics", I3D 2024, the "hallucinated" variant): the axis a is the L1 direction of Rec. 709
+    luminance (0.2126 r + 0.7152 g + 0.0722 b), shared by the channels; each channel's zonal coefficient
+    is z = L0 q (0.08 + 0.6 q) with q = |L1 . a| / L0 clamped to sqrt(3) (the paper's curve fit; sqrt(3)
+    is q's largest value for non-negative radiance), adding radiance z Y20(a . w). A channel with L0 <= 0,
+    or SH with no luminance L1 direction, gets no zonal term. Band 2 of the input is not read. */
+#define TP_SH_ORDER_ZH3 2u
+#define TP_SH_WINDOW_NONE        0u
+#define TP_SH_WINDOW_SLOAN       1u  /* Sloan's deringing window of strength window_strength */
+/** The smallest window that keeps the irradiance non-negative: the strength s is bisected over the
+    floats until it is adjacent to one that leaves a negative minimum, s being the one whose proven
+    lower bound (see tp_sh_min_irradiance) is >= 0 in every channel with a positive L0 (no window can
+    lift a channel whose L0 <= 0, so those are left out). 0 if already non-negative; it may be
+    +infinity (only band 0 kept) when no finite float strength suffices. Costs tens of minimum
+    searches: apply it once with tp_sh_apply_options rather than per query. */
+#define TP_SH_WINDOW_NONNEGATIVE 2u
+
+typedef struct tp_sh_eval_options {
+    uint32_t struct_size;
+    uint32_t order;              /* TP_SH_ORDER_* */
+    uint32_t window;             /* TP_SH_WINDOW_*, applied after the order */
+    float window_strength;       /* s >= 0, finite; read for TP_SH_WINDOW_SLOAN only */
+} tp_sh_eval_options;
+
+/** Fills defaults (L2, no window, strength 0) and struct_size. */
+TP_API tp_status tp_sh_eval_options_init(tp_sh_eval_options* options);
+
+/** Irradiance for unit normal `normal` under the options' order and window; bit for bit
+    tp_sh_eval_irradiance of tp_sh_apply_options(sh). options NULL is the same as tp_sh_eval_irradiance.
+    L1 without a window reads only the first 4 floats of each channel. */
+TP_API tp_status tp_sh_eval_irradiance_ex(const float sh[27], const float normal[3],
+                                          const tp_sh_eval_options* options, float out_rgb[3]);
+
+/** Rewrites sh in place so that its plain L2 evaluation (tp_sh_eval_irradiance) is the evaluation the
+    options choose: L1 zeroes band 2; ZH3 writes its zonal term into band 2 as z sqrt(4pi/5) Y2m(a) (the
+    addition theorem: a zonal function about any axis is expressible in L2); the window then scales
+    bands 1 and 2, each product rounded once to float. options NULL leaves sh unchanged. */
+TP_API tp_status tp_sh_apply_options(float sh[27], const tp_sh_eval_options* options);
+
+/** Smallest irradiance over all unit normals per channel, under the options (NULL = L2, no window),
+    and the unit normal where the smallest of the three occurs: the "negative irradiance" metric. Each
+    channel's irradiance is a quadratic c + b.n + n^T A n on the sphere; its global minimum is the
+    trust-region solution (A - mu I) n = -b/2 with mu at most A's smallest eigenvalue, found in double
+    by bisection of the monotone secular equation (or that eigenvalue, in the "hard case"), and the
+    Lagrange dual at mu bounds it from below, so the answer is exact to double rounding, not sampled. */
+TP_API tp_status tp_sh_min_irradiance(const float sh[27], const tp_sh_eval_options* options,
+                                      float out_min_rgb[3], float out_normal[3]);
+
+/** The strength TP_SH_WINDOW_NONNEGATIVE picks for sh under options->order (options NULL = L2; the
+    window fields are not read). */
+TP_API tp_status tp_sh_nonnegative_window_strength(const float sh[27], const tp_sh_eval_options* options,
+                                                   float* out_strength);
+
 /* ------------------------------------------------------------------------------------------------
  * Shadow caster volumes (run time): cull potential shadow casters of a light into a convex region.
  * Planes are 4 floats (nx, ny, nz, d), inward: a point x is inside when n.x + d >= 0.

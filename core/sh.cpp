@@ -6,22 +6,12 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The contract's constants (capi/tetprobe.h) at full precision: sqrt(1/4pi), sqrt(3/4pi),
-// sqrt(15/4pi), sqrt(5/16pi), sqrt(15/16pi).
-constexpr double kY00 = 0.28209479177387814;
-constexpr double kY1 = 0.4886025119029199;
-constexpr double kY2 = 1.0925484305920792;
-constexpr double kY20 = 0.31539156525252005;
-constexpr double kY22 = 0.5462742152960396;
-
-constexpr int kBandOfCoefficient[9] = {0, 1, 1, 1, 2, 2, 2, 2, 2};
-
 }  // namespace
 
 // One body for both precisions: the constants are rounded to T once, then used as in the contract.
 template <class T>
 void sh_basis_in(T x, T y, T z, T out[9]) {
-    const T c00 = T(kY00), c1 = T(kY1), c2 = T(kY2), c20 = T(kY20), c22 = T(kY22);
+    const T c00 = T(kShY00), c1 = T(kShY1), c2 = T(kShY2), c20 = T(kShY20), c22 = T(kShY22);
     out[0] = c00;
     out[1] = c1 * y;
     out[2] = c1 * z;
@@ -55,20 +45,34 @@ void sh_eval_radiance(const float sh[27], const float d[3], float out_rgb[3]) {
     }
 }
 
-void sh_eval_irradiance(const float sh[27], const float n[3], float out_rgb[3]) {
+// The first Count coefficients of each channel against the convolved basis, summed in order.
+template <int Count>
+void sh_eval_irradiance_first(const float sh[27], const float n[3], float out_rgb[3]) {
     float basis[9];
     sh_basis(n[0], n[1], n[2], basis);
-    for (int i = 0; i < 9; ++i) basis[i] *= float(sh_cosine_lobe_band(kBandOfCoefficient[i]));
+    for (int i = 0; i < Count; ++i) basis[i] *= float(sh_cosine_lobe_band(kShBandOfCoefficient[i]));
     for (int c = 0; c < 3; ++c) {
         float sum = 0.0f;
-        for (int i = 0; i < 9; ++i) sum += sh[9 * c + i] * basis[i];
+        for (int i = 0; i < Count; ++i) sum += sh[9 * c + i] * basis[i];
         out_rgb[c] = sum;
+    }
+}
+
+void sh_eval_irradiance(const float sh[27], const float n[3], float out_rgb[3]) {
+    sh_eval_irradiance_first<9>(sh, n, out_rgb);
+}
+
+void sh_eval_irradiance_bands(const float sh[27], const float n[3], int bands, float out_rgb[3]) {
+    switch (bands) {
+        case 1: sh_eval_irradiance_first<1>(sh, n, out_rgb); return;
+        case 2: sh_eval_irradiance_first<4>(sh, n, out_rgb); return;
+        default: sh_eval_irradiance_first<9>(sh, n, out_rgb); return;
     }
 }
 
 void sh_add_ambient(float sh[27], const float rgb[3]) {
     // Uniform radiance L projects onto Y00 only: L * 4pi * Y00 = L * 2 sqrt(pi).
-    const float scale = float(4.0 * kPi * kY00);
+    const float scale = float(4.0 * kPi * kShY00);
     for (int c = 0; c < 3; ++c) sh[9 * c] += rgb[c] * scale;
 }
 

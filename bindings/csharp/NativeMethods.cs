@@ -1,15 +1,21 @@
 // Layer 1: the raw C ABI of capi/tetprobe.h as P/Invoke declarations, one per exported function,
-// and the structs that cross it. Nothing here checks a status; see NativeProxy.
+// and the structs that cross it. Nothing here checks a status; see NativeProxy. tests/csharp checks every
+// declaration here against the header (names, parameter and return types, struct layouts).
+// Span overloads on by themselves wherever the runtime has Span<T> in its core library.
+#if UNITY_2021_2_OR_NEWER || NETCOREAPP2_1_OR_GREATER || NETSTANDARD2_1_OR_GREATER
+#define TETPROBE_SPAN
+#endif
 using System;
 using System.Runtime.InteropServices;
+#if UNITY_5_3_OR_NEWER
+using Vector3 = UnityEngine.Vector3;
+#endif
 
 namespace TetProbe
 {
-    [UnmanagedFunctionPointer(CallingConvention.Cdecl)]
-    internal delegate int ProgressCallback(IntPtr user, float fraction, IntPtr stage);
-
+    /// <summary>tp_build_options.</summary>
     [StructLayout(LayoutKind.Sequential)]
-    internal struct BuildOptions
+    internal struct NativeBuildOptions
     {
         public uint struct_size;
         public uint flags;
@@ -62,9 +68,50 @@ namespace TetProbe
         public float t;
     }
 
+    /// <summary>tp_bake_options.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativeBakeOptions
+    {
+        public uint struct_size;
+        public uint flags;
+        public uint rays;
+        public uint bounces;
+        public ulong seed;
+        public uint threads;
+        public IntPtr progress;
+        public IntPtr progress_user;
+    }
+
+    /// <summary>tp_effects_plan.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativeEffectsPlan
+    {
+        public uint struct_size;
+        public uint lights;
+        public uint direct_lights;
+        public uint realtime_lights;
+        public uint out_of_range_lights;
+        public int sky;
+        public uint emissive_meshes;
+        public uint bounces;
+        public int shadows;
+        public uint meshes;
+        public uint shadow_casters;
+        public uint shadow_caster_candidates;
+    }
+
     internal static class NativeMethods
     {
-        const string Library = "tetprobe";
+        // The plugin's name: the full library by default; the run-time library (stores and queries only) in a
+        // player built with TETPROBE_RUNTIME; statically linked into the player on iOS. The editor always loads
+        // the full library, which it needs to bake.
+#if UNITY_IOS && !UNITY_EDITOR
+        public const string Library = "__Internal";
+#elif TETPROBE_RUNTIME && !UNITY_EDITOR
+        public const string Library = "tetprobe_runtime";
+#else
+        public const string Library = "tetprobe";
+#endif
 
         public const uint BuildNoExtrapolation = 1;
         public const uint BuildIndex32 = 2;
@@ -74,6 +121,9 @@ namespace TetProbe
         public const uint LightDirectional = 0;
         public const uint LightPoint = 1;
         public const uint LightSpot = 2;
+        public const uint LightModeBaked = 0;
+        public const uint LightModeRealtime = 1;
+        public const uint BakeNoCulling = 1;
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern uint tp_version();
@@ -85,11 +135,11 @@ namespace TetProbe
         public static extern IntPtr tp_status_name(int status);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
-        public static extern int tp_build_options_init(ref BuildOptions options);
+        public static extern int tp_build_options_init(ref NativeBuildOptions options);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_build([In] Vector3[] positions, UIntPtr position_stride,
-            [In] SphericalHarmonicsL2[] sh, UIntPtr sh_stride, UIntPtr probe_count, ref BuildOptions options,
+            [In] SphericalHarmonicsL2[] sh, UIntPtr sh_stride, UIntPtr probe_count, ref NativeBuildOptions options,
             out StoreHandle store);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
@@ -175,5 +225,75 @@ namespace TetProbe
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_volume_test_sphere([In] float[] planes, UIntPtr plane_count, ref Vector3 center,
             float radius, out int intersects);
+#if TETPROBE_SPAN
+        // Batch calls on spans: the first element by reference (pinned for the call), hints as a reference or
+        // IntPtr.Zero for none. Only called with count > 0.
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, ref int hints, UIntPtr hint_stride, ref SphericalHarmonicsL2 sh, UIntPtr sh_stride,
+            ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, IntPtr hints, UIntPtr hint_stride, ref SphericalHarmonicsL2 sh, UIntPtr sh_stride,
+            ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_weights_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, ref int hints, UIntPtr hint_stride, ref uint probes, UIntPtr probes_stride,
+            ref float weights, UIntPtr weights_stride, ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_weights_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, IntPtr hints, UIntPtr hint_stride, ref uint probes, UIntPtr probes_stride,
+            ref float weights, UIntPtr weights_stride, ref TpBatchOptions options);
+#endif
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_material_init(out Material material);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_light_init(out Light light);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_create(out SceneHandle scene);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_release(IntPtr scene);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_load_file([In] byte[] path, out SceneHandle scene);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_add_mesh(SceneHandle scene, [In] Vector3[] vertices, UIntPtr vertex_count,
+            [In] uint[] indices, UIntPtr triangle_count, [In] Material[] materials, UIntPtr material_count,
+            [In] uint[] triangle_materials, out uint mesh);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_add_light(SceneHandle scene, ref Light light, out uint id);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_set_sky_color(SceneHandle scene, ref Vector3 rgb);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_set_sky_sh(SceneHandle scene, ref SphericalHarmonicsL2 sh);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_probes(SceneHandle scene, out IntPtr positions, out UIntPtr count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_set_probes(SceneHandle scene, [In] Vector3[] positions, UIntPtr count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_bake_options_init(ref NativeBakeOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_bake_plan(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, ref NativeBakeOptions options, ref NativeEffectsPlan plan, [Out] byte[] text,
+            UIntPtr text_capacity);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_bake(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, ref NativeBakeOptions options, [Out] SphericalHarmonicsL2[] sh, UIntPtr sh_stride);
     }
 }

@@ -3,15 +3,22 @@
 using System;
 using System.Runtime.InteropServices;
 using System.Text;
+using System.Threading;
+#if UNITY_5_3_OR_NEWER
+using Vector3 = UnityEngine.Vector3;
+#endif
 
 namespace TetProbe
 {
-    internal static class NativeProxy
+    internal static partial class NativeProxy
     {
         /// <summary>The version this binding was written for; the library's major.minor must match.</summary>
         public const uint BindingVersionMajor = 0, BindingVersionMinor = 5;
 
-        static bool versionChecked;
+        /// <summary>Where the library's version comes from; tests put a fake library version here.</summary>
+        internal static Func<uint> VersionSource = () => NativeMethods.tp_version();
+
+        static volatile bool versionChecked;
 
         static readonly UIntPtr PositionStride = (UIntPtr)12;
         static readonly UIntPtr HintStride = (UIntPtr)4;
@@ -21,37 +28,79 @@ namespace TetProbe
         public static void Check(int status)
         {
             if (status != 0)
-                throw new TetProbeException((TetProbeStatus)status, Marshal.PtrToStringAnsi(NativeMethods.tp_last_error()) ?? "");
+                throw new TetProbeException((TetProbeStatus)status, Utf8String(NativeMethods.tp_last_error()));
         }
 
-        /// <summary>Throws TetProbeException(Version) if the loaded library's major.minor differs from the binding's.</summary>
+        /// <summary>A NUL-terminated UTF-8 string of the library (messages, names), decoded as UTF-8 on every platform.</summary>
+        internal static string Utf8String(IntPtr text)
+        {
+            if (text == IntPtr.Zero) return "";
+            int length = 0;
+            while (Marshal.ReadByte(text, length) != 0) ++length;
+            var bytes = new byte[length];
+            Marshal.Copy(text, bytes, 0, length);
+            return Encoding.UTF8.GetString(bytes);
+        }
+
+        /// <summary>Checks once that the native library is there and of the binding's major.minor; until a check
+        /// succeeds every call into the library repeats it and throws TetProbeException(Version) or
+        /// DllNotFoundException with what to do.</summary>
         public static void EnsureVersion()
         {
             if (versionChecked) return;
-            uint version = NativeMethods.tp_version();
+            uint version;
+            try
+            {
+                version = VersionSource();
+            }
+            catch (DllNotFoundException e)
+            {
+                throw new DllNotFoundException("the tetprobe native library '" + NativeMethods.Library + "' was not found: put " +
+                    "the plugin (lib" + NativeMethods.Library + ".so, " + NativeMethods.Library + ".dll or lib" +
+                    NativeMethods.Library + ".dylib) where the runtime looks for native libraries", e);
+            }
             uint major = version >> 16, minor = (version >> 8) & 0xFF;
             if (major != BindingVersionMajor || minor != BindingVersionMinor)
-                throw new TetProbeException(TetProbeStatus.Version, "libtetprobe " + major + "." + minor + "." + (version & 0xFF) +
-                    " does not match the TetProbe binding " + BindingVersionMajor + "." + BindingVersionMinor);
+                throw new TetProbeException(TetProbeStatus.Version, "the native library '" + NativeMethods.Library + "' is version " +
+                    major + "." + minor + "." + (version & 0xFF) + " but this TetProbe binding needs " + BindingVersionMajor + "." +
+                    BindingVersionMinor + ".x: ship the binding and the plugin of the same release");
             versionChecked = true;
         }
 
-        static byte[] Utf8Path(string path)
+        /// <summary>Forgets a successful version check (tests that change VersionSource).</summary>
+        internal static void ResetVersionCheck()
+        {
+            versionChecked = false;
+        }
+
+        internal static byte[] Utf8Path(string path)
         {
             if (path == null) throw new ArgumentNullException("path");
             return Encoding.UTF8.GetBytes(path + "\0");
         }
 
-        public static StoreHandle Build(Vector3[] positions, SphericalHarmonicsL2[] sh, uint flags)
+        public static NativeBuildOptions DefaultBuildOptions()
         {
             EnsureVersion();
-            var options = new BuildOptions();
+            var options = new NativeBuildOptions();
             Check(NativeMethods.tp_build_options_init(ref options));
-            options.flags = flags;
-            StoreHandle store;
-            Check(NativeMethods.tp_store_build(positions, PositionStride, sh, ShStride, (UIntPtr)positions.Length,
-                ref options, out store));
-            return store;
+            return options;
+        }
+
+        public static StoreHandle Build(Vector3[] positions, SphericalHarmonicsL2[] sh, NativeBuildOptions options,
+                                        IProgress<float> progress, CancellationToken cancel)
+        {
+            EnsureVersion();
+            using (var bridge = ProgressBridge.Start(progress, cancel))
+            {
+                options.progress = bridge.Callback;
+                options.progress_user = bridge.User;
+                StoreHandle store;
+                int status = NativeMethods.tp_store_build(positions, PositionStride, sh, ShStride, (UIntPtr)positions.Length,
+                    ref options, out store);
+                bridge.Finish(status);
+                return store;
+            }
         }
 
         public static StoreHandle Load(byte[] data)
@@ -72,6 +121,7 @@ namespace TetProbe
 
         public static void SaveFile(StoreHandle store, string path)
         {
+            EnsureVersion();
             Check(NativeMethods.tp_store_save_file(store, Utf8Path(path)));
         }
 
@@ -153,18 +203,21 @@ namespace TetProbe
 
         public static void ShAddAmbient(ref SphericalHarmonicsL2 sh, float r, float g, float b)
         {
+            EnsureVersion();
             var rgb = new Vector3(r, g, b);
             Check(NativeMethods.tp_sh_add_ambient(ref sh, ref rgb));
         }
 
         public static void ShAddDirectional(ref SphericalHarmonicsL2 sh, Vector3 direction, float r, float g, float b)
         {
+            EnsureVersion();
             var rgb = new Vector3(r, g, b);
             Check(NativeMethods.tp_sh_add_directional(ref sh, ref direction, ref rgb));
         }
 
         public static Vector3 ShEvalRadiance(ref SphericalHarmonicsL2 sh, Vector3 direction)
         {
+            EnsureVersion();
             Vector3 rgb;
             Check(NativeMethods.tp_sh_eval_radiance(ref sh, ref direction, out rgb));
             return rgb;
@@ -172,6 +225,7 @@ namespace TetProbe
 
         public static Vector3 ShEvalIrradiance(ref SphericalHarmonicsL2 sh, Vector3 normal)
         {
+            EnsureVersion();
             Vector3 rgb;
             Check(NativeMethods.tp_sh_eval_irradiance(ref sh, ref normal, out rgb));
             return rgb;
@@ -179,6 +233,7 @@ namespace TetProbe
 
         public static float[] ShadowCasterVolume(float[] planes, uint lightType, Vector3 lightVector)
         {
+            EnsureVersion();
             UIntPtr planeCount = (UIntPtr)(planes.Length / 4);
             UIntPtr capacity = NativeMethods.tp_shadow_caster_volume_bound(planeCount);
             var output = new float[4 * Math.Max(1, (int)capacity.ToUInt64())];
@@ -192,6 +247,7 @@ namespace TetProbe
 
         public static bool VolumeTestAabb(float[] planes, Vector3 min, Vector3 max)
         {
+            EnsureVersion();
             int hit;
             Check(NativeMethods.tp_volume_test_aabb(planes, (UIntPtr)(planes.Length / 4), ref min, ref max, out hit));
             return hit != 0;
@@ -199,6 +255,7 @@ namespace TetProbe
 
         public static bool VolumeTestSphere(float[] planes, Vector3 center, float radius)
         {
+            EnsureVersion();
             int hit;
             Check(NativeMethods.tp_volume_test_sphere(planes, (UIntPtr)(planes.Length / 4), ref center, radius, out hit));
             return hit != 0;

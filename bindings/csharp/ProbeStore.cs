@@ -1,6 +1,10 @@
 // Layer 3: ProbeStore, the idiomatic API over a native store. Immutable once built or loaded; any
 // number of threads may query one store, each moving object keeping its own int hint (-1 = none).
 using System;
+using System.Threading;
+#if UNITY_5_3_OR_NEWER
+using Vector3 = UnityEngine.Vector3;
+#endif
 
 namespace TetProbe
 {
@@ -22,13 +26,53 @@ namespace TetProbe
     public struct ProbeLocation
     {
         public int Cell;
+        /// <summary>True for an outer cell (beyond the probes' hull), false for a tetrahedron.</summary>
         public bool Outer;
+        /// <summary>Cells the walk visited after its start cell.</summary>
         public int Steps;
+        /// <summary>True if the walk handed the decision to the exhaustive search (only outside the hull).</summary>
+        public bool Fallback;
+        /// <summary>Input probe indices as Weights (unused slots weigh 0 and repeat a used probe).</summary>
         public uint[] Probes;
         public float[] Weights;
+        /// <summary>Outer cells: the ray parameter of the point (0 on the hull).</summary>
+        public float T;
     }
 
-    public sealed class ProbeStore : IDisposable
+    /// <summary>Options of ProbeStore.Build (tp_build_options); a new instance holds the library's defaults.</summary>
+    public sealed class BuildOptions
+    {
+        /// <summary>False: no outer cells; queries outside the probes' hull throw with TetProbeStatus.Outside.</summary>
+        public bool Extrapolate = true;
+        /// <summary>The smallest blob (neighbours rebuilt on load); answers as the fast layout (same cells, weights
+        /// within 1e-6).</summary>
+        public bool Compact;
+        /// <summary>32-bit indices even where 16 bits would do.</summary>
+        public bool Index32;
+        /// <summary>Probes closer than this fraction of the set's bounding-box diagonal are merged.</summary>
+        public double MergeTolerance;
+        /// <summary>A set thinner than this fraction of its diagonal is treated as flat (or as a line).</summary>
+        public double FlatTolerance;
+
+        public BuildOptions()
+        {
+            NativeBuildOptions defaults = NativeProxy.DefaultBuildOptions();
+            MergeTolerance = defaults.merge_tolerance;
+            FlatTolerance = defaults.flat_tolerance;
+        }
+
+        internal NativeBuildOptions ToNative()
+        {
+            NativeBuildOptions options = NativeProxy.DefaultBuildOptions();
+            options.flags = (Extrapolate ? 0u : NativeMethods.BuildNoExtrapolation) |
+                            (Compact ? NativeMethods.BuildCompact : 0u) | (Index32 ? NativeMethods.BuildIndex32 : 0u);
+            options.merge_tolerance = MergeTolerance;
+            options.flat_tolerance = FlatTolerance;
+            return options;
+        }
+    }
+
+    public sealed partial class ProbeStore : IDisposable
     {
         readonly StoreHandle handle;
 
@@ -38,7 +82,7 @@ namespace TetProbe
         }
 
         /// <summary>The loaded library's version as (major &lt;&lt; 16) | (minor &lt;&lt; 8) | patch.</summary>
-        public static uint LibraryVersion { get { return NativeMethods.tp_version(); } }
+        public static uint LibraryVersion { get { return NativeProxy.VersionSource(); } }
 
         /// <summary>Builds a store from probe positions and their SH (null = zeros). extrapolate = false builds no
         /// outer cells: queries outside the probes' hull then throw with TetProbeStatus.Outside. compact = true writes
@@ -47,11 +91,18 @@ namespace TetProbe
         public static ProbeStore Build(Vector3[] positions, SphericalHarmonicsL2[] sh, bool extrapolate = true,
                                        bool compact = false)
         {
+            return Build(positions, sh, new BuildOptions { Extrapolate = extrapolate, Compact = compact });
+        }
+
+        /// <summary>Builds a store with options (null = defaults). progress receives fractions in [0, 1] on the calling
+        /// thread; cancelling `cancel` stops the build with OperationCanceledException.</summary>
+        public static ProbeStore Build(Vector3[] positions, SphericalHarmonicsL2[] sh, BuildOptions options,
+                                       IProgress<float> progress = null, CancellationToken cancel = default(CancellationToken))
+        {
             if (positions == null) throw new ArgumentNullException("positions");
             if (sh != null && sh.Length != positions.Length)
                 throw new ArgumentException("sh has " + sh.Length + " entries for " + positions.Length + " positions", "sh");
-            uint flags = (extrapolate ? 0u : NativeMethods.BuildNoExtrapolation) | (compact ? NativeMethods.BuildCompact : 0u);
-            return new ProbeStore(NativeProxy.Build(positions, sh, flags));
+            return new ProbeStore(NativeProxy.Build(positions, sh, (options ?? new BuildOptions()).ToNative(), progress, cancel));
         }
 
         /// <summary>Loads and validates a store file.</summary>
@@ -164,6 +215,7 @@ namespace TetProbe
             return new ProbeLocation
             {
                 Cell = n.cell, Outer = n.cell_kind == NativeMethods.CellOuter, Steps = (int)n.steps,
+                Fallback = n.fallback != 0, T = n.t,
                 Probes = new[] { n.probe0, n.probe1, n.probe2, n.probe3 },
                 Weights = new[] { n.weight0, n.weight1, n.weight2, n.weight3 },
             };

@@ -1,5 +1,8 @@
 // Shadow caster volumes: cull an engine's potential shadow casters of a light into a convex region.
 using System;
+#if UNITY_5_3_OR_NEWER
+using Vector3 = UnityEngine.Vector3;
+#endif
 
 namespace TetProbe
 {

@@ -2,6 +2,9 @@
 // field layout of Unity's UnityEngine.Rendering.SphericalHarmonicsL2 (the contract is in capi/tetprobe.h).
 using System;
 using System.Runtime.InteropServices;
+#if UNITY_5_3_OR_NEWER
+using Vector3 = UnityEngine.Vector3;
+#endif
 
 namespace TetProbe
 {

@@ -1,4 +1,6 @@
-// Vector3: three floats (x, y, z), blittable, with the layout of Unity's UnityEngine.Vector3.
+// Vector3: three floats (x, y, z), blittable, with the layout of Unity's UnityEngine.Vector3. Inside Unity
+// (UNITY_5_3_OR_NEWER) the binding uses UnityEngine.Vector3 itself instead.
+#if !UNITY_5_3_OR_NEWER
 using System;
 using System.Runtime.InteropServices;
 
@@ -24,3 +26,4 @@ namespace TetProbe
         public override string ToString() { return "(" + x + ", " + y + ", " + z + ")"; }
     }
 }
+#endif

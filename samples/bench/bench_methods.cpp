@@ -57,20 +57,24 @@
 // precision.json (one scene, two rooms, unless --scene is given; the same queries, path and reference as methods.json)
 // {
 //   "schema": "tetprobe-bench-precision/1", "quick": bool, "bake": {...as above}, "error": str,
-//   "sh_options": str,            // whether the library's tp_sh_eval_options or the benchmark's temporary shim ran
+//   "sh_options": str,            // how the evaluation choices are applied (per query or per probe)
+//   "sloan_strength_rule": str,   // how the fixed strength of Sloan's window is chosen
 //   "rule": str,                  // how a winner is chosen: error first (ties within "tie_margin"), then ns, then bytes
 //   "scenes": [{
 //     "name": str, "file": str, "probes": int, "queries": int, "mean_irradiance": float,
 //     "reference_noise": float, "tie_margin": float,   // tie_margin: that of the "overall" decision
+//     "sloan_strength": float,
 //     "rows": [{
 //       "id": str,                 // e.g. "half_fast_L2_none"
 //       "precision": "float32" | "half", "layout": "fast" | "compact",
 //       "order": "L2" | "L1" | "ZH3", "window": "none" | "sloan" | "nonnegative",
+//       "applied": "per query" | "per probe",  // the non-negative window is applied to each probe once
 //       "rms_error": float, "max_error": float,
 //       "negative_fraction": float, // fraction of query points whose tp_sh_min_irradiance (any channel) < 0
 //       "ns_per_query": float,      // interpolate + evaluate one normal, along the path with hints, median of 5
 //       "bytes_per_probe": float,   // the store's bytes per probe if its SH section held only what the order reads
-//                                   // (L1 and ZH3: 12 coefficients; L2: 27) at this precision
+//                                   // (L1, and ZH3 per query: 12 coefficients; L2 and ZH3 per probe: 27) at this
+//                                   // precision
 //       "store_bytes_per_probe": float, // the store as built today (27 coefficients)
 //       "at_probes_max_error": float    // at the probe positions against their own bake evaluated with the same
 //                                       // options (float32: exactly 0; half: the rounding to half)

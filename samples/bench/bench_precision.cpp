@@ -1,14 +1,15 @@
 // tetprobe_bench precision [--out DIR] [--quick] [--scene PATH]: part 2 of issue 8. SH float32 (the baked
 // floats blended with tetprobe's own weights, tp_store_weights) against half (tp_store_interpolate), fast
 // against compact layout, and the evaluation choices L1, ZH3 (from L1) and full L2, each without a window,
-// with Sloan's window and with the smallest non-negative window. Writes DIR/precision.json (schema at the top
-// of bench_methods.cpp).
+// with Sloan's window and with the smallest non-negative window. Orders and Sloan's window are applied per
+// query (tp_sh_eval_irradiance_ex on the blend); the non-negative window, which costs tens of minimum searches,
+// is applied once per probe (tp_sh_apply_options before the store is built), as tetprobe.h advises. Writes
+// DIR/precision.json (schema at the top of bench_methods.cpp).
 #include "bench.h"
 
 #include "bench_timing.h"
 #include "method_json.h"
 #include "method_scene.h"
-#include "sh_options_shim.h"  // TEMPORARY until the sh branch's tp_sh_eval_options is in capi/tetprobe.h
 
 #include "capi/tetprobe.h"
 
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <memory>
 #include <stdexcept>
 
 namespace {
@@ -32,13 +34,12 @@ void check(tp_status status, const char* what) {
     if (status != TP_OK) throw std::runtime_error(std::string(what) + ": " + tp_last_error());
 }
 
-tp_store* build_store(const MethodScene& s, uint32_t flags) {
+tp_store* build_store(const MethodScene& s, const std::vector<float>& probe_sh, uint32_t flags) {
     tp_build_options options;
     tp_build_options_init(&options);
     options.flags = flags;
     tp_store* store = nullptr;
-    check(tp_store_build(s.probes.data(), 0, s.probe_sh.data(), 0, s.probes.size() / 3, &options, &store),
-          "tp_store_build");
+    check(tp_store_build(s.probes.data(), 0, probe_sh.data(), 0, s.probes.size() / 3, &options, &store), "tp_store_build");
     return store;
 }
 
@@ -49,17 +50,50 @@ double store_bytes(const tp_store* store) {
     return double(info.bytes);
 }
 
-// How the SH of a point are obtained: from halves in a store (fast or compact) or from the baked floats
-// blended with the fast store's weights.
+// How the SH of a point are obtained: from halves in a store (fast or compact) or from float SH blended
+// with the fast store's weights (tp_store_weights).
 struct Storage {
     std::string precision, layout;
-    double store_bytes_per_probe;
+    double store_bytes_per_probe = 0;
+    std::shared_ptr<tp_store> store;
+    std::vector<float> float_sh;
     std::function<void(const float*, int32_t*, float*)> interpolate;
 };
 
+// precision "float32" or "half", layout "fast" or "compact", over the given probe SH.
+Storage make_storage(const MethodScene& s, const std::string& precision, const std::string& layout,
+                     const std::vector<float>& probe_sh) {
+    Storage storage;
+    storage.precision = precision;
+    storage.layout = layout;
+    storage.store.reset(build_store(s, probe_sh, layout == "compact" ? TP_BUILD_COMPACT : 0), tp_store_release);
+    const double probes = double(s.probes.size() / 3);
+    tp_store* store = storage.store.get();
+    if (precision == "half") {
+        storage.store_bytes_per_probe = store_bytes(store) / probes;
+        storage.interpolate = [store](const float* p, int32_t* hint, float* out) { tp_store_interpolate(store, p, hint, out); };
+    } else {
+        storage.store_bytes_per_probe = store_bytes(store) / probes + 27 * 2;  // 27 floats in place of 27 halves
+        storage.float_sh = probe_sh;
+        const float* sh = storage.float_sh.data();
+        storage.interpolate = [store, sh](const float* p, int32_t* hint, float* out) {
+            uint32_t probes[4];
+            float weights[4];
+            tp_store_weights(store, p, hint, probes, weights);
+            for (int i = 0; i < 27; ++i) out[i] = 0;
+            for (int k = 0; k < 4; ++k)
+                for (int i = 0; i < 27; ++i) out[i] += weights[k] * sh[27 * size_t(probes[k]) + i];
+        };
+    }
+    return storage;
+}
+
+// One evaluation choice: `options` is what it means; per_probe choices are applied to every probe's SH
+// before the store is built, and the query evaluates the blend plainly (query_options: L2, no window).
 struct Evaluation {
     std::string order_name, window_name;
-    tp_sh_eval_options options;
+    tp_sh_eval_options options, query_options;
+    bool per_probe = false;
 };
 
 float luminance_ex(const float sh[27], const float n[3], const tp_sh_eval_options& options) {
@@ -85,13 +119,13 @@ RowResult bench_row(const MethodScene& s, const MethodSettings& settings, const 
         int32_t hint = -1;
         storage.interpolate(&s.queries[3 * i], &hint, sh);
         for (const auto& n : kAxisNormals) {
-            const double error = (luminance_ex(sh, n, e.options) - irradiance_luminance(&s.reference[27 * i], n)) /
+            const double error = (luminance_ex(sh, n, e.query_options) - irradiance_luminance(&s.reference[27 * i], n)) /
                                  s.mean_irradiance;
             stats.add(error);
             squares.push_back(error * error);
         }
-        float min_rgb[3], normal[9];
-        check(tp_sh_min_irradiance(sh, &e.options, min_rgb, normal), "tp_sh_min_irradiance");
+        float min_rgb[3], normal[3];
+        check(tp_sh_min_irradiance(sh, &e.query_options, min_rgb, normal), "tp_sh_min_irradiance");
         negative += min_rgb[0] < 0 || min_rgb[1] < 0 || min_rgb[2] < 0;
     }
     const double rms = stats.rms();
@@ -102,7 +136,7 @@ RowResult bench_row(const MethodScene& s, const MethodSettings& settings, const 
         int32_t hint = -1;
         storage.interpolate(&s.probes[3 * p], &hint, sh);
         for (const auto& n : kAxisNormals)
-            at_probes.add((luminance_ex(sh, n, e.options) - luminance_ex(&s.probe_sh[27 * p], n, e.options)) /
+            at_probes.add((luminance_ex(sh, n, e.query_options) - luminance_ex(&s.probe_sh[27 * p], n, e.options)) /
                           s.mean_irradiance);
     }
 
@@ -114,7 +148,7 @@ RowResult bench_row(const MethodScene& s, const MethodSettings& settings, const 
             float rgb[3];
             for (size_t f = 0; f < frames; ++f) {
                 storage.interpolate(&s.path[3 * f], &hint, sh);
-                tp_sh_eval_irradiance_ex(sh, kUp, &e.options, rgb);
+                tp_sh_eval_irradiance_ex(sh, kUp, &e.query_options, rgb);
             }
         },
         settings.quick ? kTimedSeconds / 50 : kTimedSeconds, kMaxTimedQueries / frames + 1);
@@ -124,7 +158,7 @@ RowResult bench_row(const MethodScene& s, const MethodSettings& settings, const 
             for (size_t f = 0; f < frames; ++f) {
                 float rgb[3];
                 storage.interpolate(&s.path[3 * f], &hint, sh);
-                tp_sh_eval_irradiance_ex(sh, kUp, &e.options, rgb);
+                tp_sh_eval_irradiance_ex(sh, kUp, &e.query_options, rgb);
                 sink += rgb[1];
             }
         return seconds_since(start);
@@ -132,7 +166,9 @@ RowResult bench_row(const MethodScene& s, const MethodSettings& settings, const 
     if (sink == 12345.678f) std::printf(" ");
 
     const double coefficient_bytes = storage.precision == "half" ? 2.0 : 4.0;
-    const double read_coefficients = e.options.order == TP_SH_ORDER_L2 ? 27.0 : 12.0;
+    // L1 and ZH3 evaluated per query read 12 coefficients; ZH3 applied per probe stores its band 2.
+    const double read_coefficients =
+        e.options.order == TP_SH_ORDER_L1 || (e.options.order == TP_SH_ORDER_ZH3 && !e.per_probe) ? 12.0 : 27.0;
     RowResult r;
     r.rms = rms;
     r.squares = std::move(squares);
@@ -143,6 +179,7 @@ RowResult bench_row(const MethodScene& s, const MethodSettings& settings, const 
     r.json["layout"] = storage.layout;
     r.json["order"] = e.order_name;
     r.json["window"] = e.window_name;
+    r.json["applied"] = e.per_probe ? "per probe" : "per query";
     r.json["rms_error"] = rms;
     r.json["max_error"] = stats.max;
     r.json["negative_fraction"] = double(negative) / double(s.queries.size() / 3);
@@ -205,22 +242,13 @@ Json bench_scene(const std::string& path, const MethodSettings& settings) {
     MethodScene s;
     prepare_method_scene(path, settings, false, &s);
     const size_t probe_count = s.probes.size() / 3;
-    tp_store* fast = build_store(s, 0);
-    tp_store* compact = build_store(s, TP_BUILD_COMPACT);
-
-    std::vector<Storage> storages;
-    storages.push_back({"float32", "fast", store_bytes(fast) / double(probe_count) + 27 * 2,
-                        [&](const float* p, int32_t* hint, float* out) {
-                            uint32_t probes[4];
-                            float weights[4];
-                            tp_store_weights(fast, p, hint, probes, weights);
-                            for (int i = 0; i < 27; ++i) out[i] = 0;
-                            for (int k = 0; k < 4; ++k)
-                                for (int i = 0; i < 27; ++i) out[i] += weights[k] * s.probe_sh[27 * size_t(probes[k]) + i];
-                        }});
-    for (tp_store* store : {fast, compact})
-        storages.push_back({"half", store == fast ? "fast" : "compact", store_bytes(store) / double(probe_count),
-                            [store](const float* p, int32_t* hint, float* out) { tp_store_interpolate(store, p, hint, out); }});
+    // Sloan's window at one fixed strength: the one that de-rings a single directional light (a delta of
+    // radiance, the hardest non-negative signal), so the fixed window guarantees what it can for any probe.
+    float delta_sh[27] = {0};
+    const float down[3] = {0, -1, 0}, white[3] = {1, 1, 1};
+    check(tp_sh_add_directional(delta_sh, down, white), "tp_sh_add_directional");
+    float sloan_strength = 0;
+    check(tp_sh_nonnegative_window_strength(delta_sh, nullptr, &sloan_strength), "tp_sh_nonnegative_window_strength");
 
     std::vector<Evaluation> evaluations;
     const std::pair<uint32_t, const char*> orders[] = {{TP_SH_ORDER_L2, "L2"}, {TP_SH_ORDER_L1, "L1"}, {TP_SH_ORDER_ZH3, "ZH3"}};
@@ -234,15 +262,29 @@ Json bench_scene(const std::string& path, const MethodSettings& settings) {
             check(tp_sh_eval_options_init(&e.options), "tp_sh_eval_options_init");
             e.options.order = order.first;
             e.options.window = window.first;
+            e.options.window_strength = window.first == TP_SH_WINDOW_SLOAN ? sloan_strength : 0.0f;
+            e.per_probe = window.first == TP_SH_WINDOW_NONNEGATIVE;
+            e.query_options = e.options;
+            if (e.per_probe) check(tp_sh_eval_options_init(&e.query_options), "tp_sh_eval_options_init");
             evaluations.push_back(e);
         }
 
     std::vector<RowResult> results;
-    results.reserve(storages.size() * evaluations.size());
-    for (const Storage& storage : storages)
-        for (const Evaluation& e : evaluations) results.push_back(bench_row(s, settings, storage, e, probe_count));
-    tp_store_release(fast);
-    tp_store_release(compact);
+    results.reserve(3 * evaluations.size());
+    const std::pair<const char*, const char*> storage_kinds[] = {{"float32", "fast"}, {"half", "fast"}, {"half", "compact"}};
+    for (const auto& kind : storage_kinds) {
+        const Storage plain = make_storage(s, kind.first, kind.second, s.probe_sh);
+        for (const Evaluation& e : evaluations) {
+            if (!e.per_probe) {
+                results.push_back(bench_row(s, settings, plain, e, probe_count));
+                continue;
+            }
+            std::vector<float> applied = s.probe_sh;
+            for (size_t p = 0; p < probe_count; ++p)
+                check(tp_sh_apply_options(&applied[27 * p], &e.options), "tp_sh_apply_options");
+            results.push_back(bench_row(s, settings, make_storage(s, kind.first, kind.second, applied), e, probe_count));
+        }
+    }
 
     std::vector<const RowResult*> storage_rows, evaluation_rows, all_rows;
     for (const RowResult& r : results) {
@@ -278,6 +320,7 @@ Json bench_scene(const std::string& path, const MethodSettings& settings) {
     j["mean_irradiance"] = s.mean_irradiance;
     j["reference_noise"] = noise.rms();
     j["tie_margin"] = decisions[2]["tie_margin"];
+    j["sloan_strength"] = sloan_strength;
     j["rows"] = rows;
     j["decisions"] = decisions;
     return j;
@@ -297,12 +340,10 @@ int run_precision_bench(int argc, char** argv) {
     j["schema"] = "tetprobe-bench-precision/1";
     j["quick"] = settings.quick;
     j["bake"] = method_bake_json(settings);
-#ifdef TP_BENCH_SH_OPTIONS_SHIM
-    j["sh_options"] = "benchmark-local stand-in (samples/bench/sh_options_shim.h): the library's tp_sh_eval_options "
-                      "was not merged yet";
-#else
-    j["sh_options"] = "the library's tp_sh_eval_options (capi/tetprobe.h)";
-#endif
+    j["sh_options"] = "the library's tp_sh_eval_options (capi/tetprobe.h); orders and Sloan's window per query "
+                      "(tp_sh_eval_irradiance_ex on the blend), the non-negative window per probe (tp_sh_apply_options "
+                      "before the store is built; the query evaluates the blend plainly)";
+    j["sloan_strength_rule"] = "the strength tp_sh_nonnegative_window_strength gives a single directional light";
     j["error"] = "|E_row - E_reference| (Rec. 709 luminance of the irradiance; the reference in full L2, no window) over "
                  "every query point and the 6 axis normals, divided by mean_irradiance";
     j["rule"] = "error first: a row ties with the lowest-error row when the mean paired difference of their squared "

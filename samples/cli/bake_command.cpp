@@ -1,5 +1,8 @@
-// `tetprobe bake`: a scene file's probes baked (effects plan, progress, summary) into a store.
+// `tetprobe bake` and `plan`: a scene file's probes baked (effects plan, progress, summary) into a store, or
+// only the effects plan of that bake.
 #include "cli.h"
+
+#include <nlohmann/json.hpp>
 
 #include <chrono>
 #include <cinttypes>
@@ -18,20 +21,39 @@ BakeSettings bake_settings(const Arguments& a, uint32_t default_rays) {
     return s;
 }
 
-BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings) {
-    BakeResult result;
+namespace {
+
+std::vector<float> scene_probes(const tp_scene* scene) {
     const float* positions = nullptr;
     size_t count = 0;
     check(tp_scene_probes(scene, &positions, &count), "reading the scene's probes");
     if (count == 0) throw Failure("the scene lists no probe positions");
-    result.positions.assign(positions, positions + 3 * count);
+    return std::vector<float>(positions, positions + 3 * count);
+}
 
+tp_bake_options bake_options(const BakeSettings& settings) {
     tp_bake_options options;
     check(tp_bake_options_init(&options), "tp_bake_options_init");
     options.rays = settings.rays;
     options.bounces = settings.bounces;
     options.seed = settings.seed;
     options.threads = settings.threads;
+    return options;
+}
+
+ScenePtr load_scene(const std::string& path) {
+    tp_scene* scene = nullptr;
+    check(tp_scene_load_file(path.c_str(), &scene), "loading the scene");
+    return ScenePtr(scene);
+}
+
+}  // namespace
+
+BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings) {
+    BakeResult result;
+    result.positions = scene_probes(scene);
+    const size_t count = result.positions.size() / 3;
+    tp_bake_options options = bake_options(settings);
     std::memset(&result.plan, 0, sizeof result.plan);
     result.plan.struct_size = sizeof result.plan;
     char text[512] = {0};
@@ -57,9 +79,7 @@ int command_bake(const std::vector<std::string>& args) {
     const Arguments a = parse_arguments(args, {"-o", "--rays", "--bounces", "--seed", "--threads"}, {});
     if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("bake takes SCENE.json and -o STORE");
     const BakeSettings settings = bake_settings(a, 256);
-    tp_scene* raw = nullptr;
-    check(tp_scene_load_file(a.positional[0].c_str(), &raw), "loading the scene");
-    ScenePtr scene(raw);
+    ScenePtr scene = load_scene(a.positional[0]);
     const BakeResult baked = bake_scene(scene.get(), settings);
     const size_t probes = baked.positions.size() / 3;
     std::printf("baked %zu probes x %u rays, %u bounces (plan: %u) in %.2f s (%.0f probe-rays/s)\n", probes,
@@ -71,6 +91,41 @@ int command_bake(const std::vector<std::string>& args) {
     const tp_store_info info = store_info(store.get());
     std::printf("wrote %s: %u probes (%u merged), %u cells, %u-bit indices, %" PRIu64 " bytes\n", out.c_str(),
                 info.probes, info.merged_probes, info.cells, info.index_bits, info.bytes);
+    return 0;
+}
+
+int command_plan(const std::vector<std::string>& args) {
+    const Arguments a = parse_arguments(args, {"--rays", "--bounces", "--seed", "--threads"}, {"--json"});
+    if (a.positional.size() != 1) throw UsageError("plan takes SCENE.json");
+    const BakeSettings settings = bake_settings(a, 256);
+    ScenePtr scene = load_scene(a.positional[0]);
+    const std::vector<float> positions = scene_probes(scene.get());
+    const tp_bake_options options = bake_options(settings);
+    tp_effects_plan plan;
+    std::memset(&plan, 0, sizeof plan);
+    plan.struct_size = sizeof plan;
+    char text[512] = {0};
+    check(tp_bake_plan(scene.get(), positions.data(), 0, positions.size() / 3, &options, &plan, text, sizeof text),
+          "planning the bake");
+    if (!a.has("--json")) {
+        std::printf("effects plan: %s\n", text);
+        return 0;
+    }
+    nlohmann::ordered_json j;
+    j["probes"] = positions.size() / 3;
+    j["lights"] = plan.lights;
+    j["direct_lights"] = plan.direct_lights;
+    j["realtime_lights"] = plan.realtime_lights;
+    j["out_of_range_lights"] = plan.out_of_range_lights;
+    j["sky"] = plan.sky != 0;
+    j["emissive_meshes"] = plan.emissive_meshes;
+    j["bounces"] = plan.bounces;
+    j["shadows"] = plan.shadows != 0;
+    j["meshes"] = plan.meshes;
+    j["shadow_casters"] = plan.shadow_casters;
+    j["shadow_caster_candidates"] = plan.shadow_caster_candidates;
+    j["text"] = text;
+    std::printf("%s\n", j.dump(2).c_str());
     return 0;
 }
 

@@ -110,6 +110,7 @@ int command_build(const std::vector<std::string>& args);
 int command_info(const std::vector<std::string>& args);
 int command_query(const std::vector<std::string>& args);
 int command_bake(const std::vector<std::string>& args);
+int command_plan(const std::vector<std::string>& args);
 int command_demo(const std::vector<std::string>& args);
 
 }  // namespace cli

@@ -1,4 +1,4 @@
-// `tetprobe`: build, inspect, query and bake probe stores from the command line, and the demo.
+// `tetprobe`: build, inspect, query and bake probe stores from the command line, plan a bake, and the demo.
 #include "cli.h"
 
 #include <cstdio>
@@ -15,6 +15,7 @@ const char* const kUsage =
     "  tetprobe info STORE [--json]\n"
     "  tetprobe query STORE x y z [--weights] [--json]\n"
     "  tetprobe bake SCENE.json -o STORE [--rays N] [--bounces N] [--seed N] [--threads N]\n"
+    "  tetprobe plan SCENE.json [--rays N] [--bounces N] [--seed N] [--threads N] [--json]\n"
     "  tetprobe demo [--out DIR] [--scene FILE] [--rays N]\n"
     "  tetprobe version\n";
 
@@ -32,6 +33,7 @@ int main(int argc, char** argv) {
         if (command == "info") return cli::command_info(args);
         if (command == "query") return cli::command_query(args);
         if (command == "bake") return cli::command_bake(args);
+        if (command == "plan") return cli::command_plan(args);
         if (command == "demo") return cli::command_demo(args);
         if (command == "version") {
             const uint32_t v = tp_version();

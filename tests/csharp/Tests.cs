@@ -10,14 +10,14 @@ static class Tests
 {
     static int passed, failed;
 
-    static void Check(bool condition, string what)
+    internal static void Check(bool condition, string what)
     {
         if (condition) { ++passed; return; }
         ++failed;
         Console.WriteLine("FAIL: " + what);
     }
 
-    static void Throws<E>(Action action, string what, Func<E, bool> accept = null) where E : Exception
+    internal static void Throws<E>(Action action, string what, Func<E, bool> accept = null) where E : Exception
     {
         try
         {
@@ -402,13 +402,17 @@ static class Tests
                                   "planes not a multiple of 4");
     }
 
+#if !TETPROBE_RUNTIME_TESTS
     static int Main(string[] args)
     {
         string scratch = args.Length > 0 ? args[0] : Path.GetTempPath();
+        string header = args.Length > 1 ? args[1] : "capi/tetprobe.h";
+        string scenes = args.Length > 2 ? args[2] : "samples/scenes";
         Directory.CreateDirectory(scratch);
         foreach (Action<string> test in new Action<string>[] {
                      s => Layout(), s => ShHelpers(), s => Queries(), s => LayoutsAndBatchOptions(), RoundTrips,
-                     s => Volumes() })
+                     s => Volumes(), s => HeaderCheck.Run(header), s => SceneTests.Run(scenes), StoreTests.Run,
+                     s => VersionTests.Run() })
         {
             try
             {
@@ -420,6 +424,13 @@ static class Tests
                 Console.WriteLine("FAIL: unexpected " + e.GetType().Name + ": " + e.Message);
             }
         }
+        return Summary();
+    }
+#endif
+
+    /// <summary>Prints "N passed, N failed"; the exit code.</summary>
+    internal static int Summary()
+    {
         Console.WriteLine(passed + " passed, " + failed + " failed");
         return failed == 0 ? 0 : 1;
     }

@@ -119,10 +119,9 @@ def test_scene_errors(tmp_path):
         scene.add_mesh(nan_quad, QUAD_TRIANGLES)
     with pytest.raises(Error):
         scene.add_point_light((0, 0, 0), (1, 1, 1), intensity=-1.0)
-    with pytest.raises(Error) as raised:
+    with pytest.raises(ValueError, match="mode"):
         scene.add_point_light((0, 0, 0), (1, 1, 1), mode="sometimes")
-    assert raised.value.status == Status.INVALID_ARGUMENT
-    with pytest.raises(Error):
+    with pytest.raises(ValueError, match="color and sh"):
         scene.set_sky()
     with pytest.raises(Error):
         bake(scene, np.zeros((2, 3), dtype=np.float32), rays=0)

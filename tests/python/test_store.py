@@ -243,9 +243,8 @@ def test_bad_input_raises_clear_errors(tmp_path):
     bad[3, 1] = np.inf
     with pytest.raises(Error):
         Store.build(bad, sh)
-    with pytest.raises(Error) as raised:
+    with pytest.raises(ValueError, match="sh has 10 rows"):
         Store.build(positions, sh[:10])
-    assert raised.value.status == Status.INVALID_ARGUMENT
     with pytest.raises(ValueError):
         Store.build(positions[:, :2])
     with pytest.raises(ValueError):

@@ -1,26 +1,39 @@
 """tetprobe: light probes interpolated over a tetrahedral tessellation (a thin ctypes binding).
 
-The library is found through $TETPROBE_LIBRARY, then next to this package, then the build tree
-(build/libtetprobe.so in the repository), then the system; a library whose major.minor version
-differs from this package's is refused. Arrays are numpy, float32 unless said.
+Units, shapes and layouts (the same everywhere in the package):
+- Positions and points are float32 world units, arrays of shape [N, 3] (other number dtypes are
+  converted; any row stride is accepted). A single point may be given as shape [3].
+- SH are 27 float32 per probe, channel-major [r0..r8, g0..g8, b0..b8] (Unity's SphericalHarmonicsL2
+  layout), coefficient order L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22; a probe holds incoming
+  radiance, not pre-convolved (see tetprobe.sh for the full contract and evaluation).
+- Hints are int32 cell indices, one per moving object (-1 = none): pass last frame's back in.
+- A Store is immutable: any number of threads may query one store at once.
+
+Errors: the library's failures raise tetprobe.Error carrying .status (a Status) and .message; a wrong
+array shape raises ValueError and a wrong dtype TypeError, both naming the parameter; a closed Store
+or Scene raises Error(INVALID_ARGUMENT).
+
+The library is found through $TETPROBE_LIBRARY, then next to this package, then the source tree's
+build/ (when the package is used from the repository), then the system's library path; a library
+whose major.minor version differs from this package's is refused at import. The command line
+`python3 -m tetprobe` (or the `tetprobe` script of a pip install) is tetprobe.cli.
+
+    import numpy as np, tetprobe
+    positions = np.random.rand(100, 3).astype(np.float32) * 10
+    store = tetprobe.Store.build(positions, sh=np.ones((100, 27), np.float32))
+    sh, hints = store.interpolate(np.array([[5, 5, 5]], np.float32))
+    irradiance = tetprobe.sh.eval_irradiance(sh[0], (0, 1, 0))
 """
 
 from . import sh
-from ._native import PACKAGE_VERSION, library_path
+from ._native import PACKAGE_VERSION
 from .errors import Error, Status
+from .library import library_path, library_version, status_name
 from .scene import Scene, bake, bake_plan
 from .store import Store
 from .volume import shadow_caster_volume, volume_test_aabb, volume_test_sphere
 
 __version__ = "%d.%d.%d" % PACKAGE_VERSION
 
-
-def library_version():
-    """The loaded library's version as a (major, minor, patch) tuple."""
-    from ._native import lib
-    version = lib.tp_version()
-    return (version >> 16) & 0xFFFF, (version >> 8) & 0xFF, version & 0xFF
-
-
 __all__ = ["Error", "Status", "Store", "Scene", "bake", "bake_plan", "shadow_caster_volume", "volume_test_aabb",
-           "volume_test_sphere", "sh", "library_path", "library_version", "__version__"]
+           "volume_test_sphere", "sh", "library_path", "library_version", "status_name", "__version__"]

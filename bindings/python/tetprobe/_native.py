@@ -30,6 +30,12 @@ LIGHT_POINT = 1
 LIGHT_SPOT = 2
 LIGHT_MODE_BAKED = 0
 LIGHT_MODE_REALTIME = 1
+SH_ORDER_L2 = 0
+SH_ORDER_L1 = 1
+SH_ORDER_ZH3 = 2
+SH_WINDOW_NONE = 0
+SH_WINDOW_SLOAN = 1
+SH_WINDOW_NONNEGATIVE = 2
 
 ProgressFn = CFUNCTYPE(c_int, c_void_p, c_float, c_char_p)
 
@@ -54,6 +60,10 @@ class BatchOptions(Structure):
 class Location(Structure):
     _fields_ = [("struct_size", c_uint32), ("cell", c_int32), ("cell_kind", c_uint32), ("steps", c_uint32),
                 ("fallback", c_uint32), ("probes", c_uint32 * 4), ("weights", c_float * 4), ("t", c_float)]
+
+
+class ShEvalOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("order", c_uint32), ("window", c_uint32), ("window_strength", c_float)]
 
 
 class Material(Structure):
@@ -125,6 +135,11 @@ PROTOTYPES = (
     ("tp_sh_eval_irradiance", _status, (_buffer, _buffer, _buffer)),
     ("tp_sh_add_ambient", _status, (_buffer, _buffer)),
     ("tp_sh_add_directional", _status, (_buffer, _buffer, _buffer)),
+    ("tp_sh_eval_options_init", _status, (POINTER(ShEvalOptions),)),
+    ("tp_sh_eval_irradiance_ex", _status, (_buffer, _buffer, POINTER(ShEvalOptions), _buffer)),
+    ("tp_sh_apply_options", _status, (_buffer, POINTER(ShEvalOptions))),
+    ("tp_sh_min_irradiance", _status, (_buffer, POINTER(ShEvalOptions), _buffer, _buffer)),
+    ("tp_sh_nonnegative_window_strength", _status, (_buffer, POINTER(ShEvalOptions), POINTER(c_float))),
     ("tp_shadow_caster_volume_bound", c_size_t, (c_size_t,)),
     ("tp_shadow_caster_volume", _status, (_buffer, c_size_t, c_uint32, _buffer, _buffer, c_size_t,
                                           POINTER(c_size_t))),
@@ -152,23 +167,28 @@ _LIBRARY_NAME = {"darwin": "libtetprobe.dylib", "win32": "tetprobe.dll"}.get(sys
 
 
 def candidate_paths():
-    """Where the library is looked for, in order: $TETPROBE_LIBRARY, next to the package, the build tree."""
+    """Where the library is looked for, in order: $TETPROBE_LIBRARY, next to the package, and (only when
+    the package sits in the source tree) the tree's build/ directory; the system's search path comes last."""
     package_dir = os.path.dirname(os.path.abspath(__file__))
     repo_root = os.path.normpath(os.path.join(package_dir, "..", "..", ".."))
     paths = []
     if os.environ.get("TETPROBE_LIBRARY"):
         paths.append(os.environ["TETPROBE_LIBRARY"])
     paths.append(os.path.join(package_dir, _LIBRARY_NAME))
-    paths.append(os.path.join(repo_root, "build", _LIBRARY_NAME))
+    # An installed package must not pick up whatever build/ happens to lie two levels above it.
+    if os.path.exists(os.path.join(repo_root, "capi", "tetprobe.h")):
+        paths.append(os.path.join(repo_root, "build", _LIBRARY_NAME))
     return paths
 
 
-def check_version(library_version, package_version=PACKAGE_VERSION):
+def check_version(library_version, package_version=PACKAGE_VERSION, path=None):
     """Raises Error(VERSION) unless the library's (major << 16 | minor << 8 | patch) matches major.minor."""
     major, minor = (library_version >> 16) & 0xFFFF, (library_version >> 8) & 0xFF
     if (major, minor) != tuple(package_version[:2]):
-        raise Error(Status.VERSION, "libtetprobe %d.%d.%d does not match the tetprobe package %d.%d.%d" %
-                    ((major, minor, library_version & 0xFF) + tuple(package_version)))
+        where = " at %s" % path if path else ""
+        raise Error(Status.VERSION, "libtetprobe %d.%d.%d%s does not match the tetprobe package %d.%d.%d "
+                    "(major.minor must agree); set TETPROBE_LIBRARY to a matching build" %
+                    ((major, minor, library_version & 0xFF, where) + tuple(package_version)))
 
 
 def _load():
@@ -187,7 +207,8 @@ def _load():
     system = ctypes.util.find_library("tetprobe")
     if system:
         return ctypes.CDLL(system), system
-    raise ImportError("libtetprobe not found; set TETPROBE_LIBRARY (looked in: %s and the system)" % ", ".join(tried))
+    raise ImportError("libtetprobe not found; set TETPROBE_LIBRARY (looked in: %s and the system's library path)"
+                      % ", ".join(tried))
 
 
 def _declare(library):
@@ -200,10 +221,11 @@ def _declare(library):
 
 lib, library_path = _load()
 _declare(lib)
-check_version(lib.tp_version())
+check_version(lib.tp_version(), path=library_path)
 
 
 def last_error():
+    """The library's message of the last failure on this thread."""
     return lib.tp_last_error().decode("utf-8", "replace")
 
 

@@ -4,7 +4,7 @@ import enum
 
 
 class Status(enum.IntEnum):
-    """The C ABI's tp_status values."""
+    """The C ABI's tp_status values (TP_ERROR_<name>): Error.status is one of them; OK (0) is never raised."""
     OK = 0
     INVALID_ARGUMENT = 1
     OUT_OF_MEMORY = 2
@@ -31,5 +31,8 @@ class Error(RuntimeError):
             pass
         self.status = status
         self.message = message
-        name = "TP_ERROR_" + status.name if isinstance(status, Status) else "status %d" % status
+        if isinstance(status, Status):
+            name = "TP_OK" if status == Status.OK else "TP_ERROR_" + status.name
+        else:
+            name = "status %d" % status
         super().__init__("%s: %s" % (name, message) if message else name)

@@ -10,7 +10,6 @@ from . import _native
 from ._handle import NativeHandle
 from ._arrays import Progress, rows, vector
 from ._native import SH_FLOATS, check, lib
-from .errors import Error, Status
 
 _MODES = {"baked": _native.LIGHT_MODE_BAKED, "realtime": _native.LIGHT_MODE_REALTIME}
 
@@ -18,12 +17,14 @@ _MODES = {"baked": _native.LIGHT_MODE_BAKED, "realtime": _native.LIGHT_MODE_REAL
 def _mode(mode):
     try:
         return _MODES[mode]
-    except KeyError:
-        raise Error(Status.INVALID_ARGUMENT, "light mode must be 'baked' or 'realtime' (got %r)" % (mode,))
+    except (KeyError, TypeError):
+        raise ValueError("mode must be one of %s (got %r)" % (", ".join(repr(m) for m in _MODES), mode)) from None
 
 
 class Scene(NativeHandle):
-    """Triangle meshes, lights, a sky and optionally probe positions, for the bake."""
+    """Triangle meshes, lights, a sky and optionally probe positions, for the bake (bake-time library only:
+    the run-time library raises Error(UNSUPPORTED)). Positions are float32 world units; colours are
+    linear RGB. Scene() is empty; Scene.load reads a JSON scene file. close() or `with` releases it."""
 
     _release = staticmethod(lib.tp_scene_release)
     _noun = "scene"
@@ -37,7 +38,8 @@ class Scene(NativeHandle):
 
     @classmethod
     def load(cls, path):
-        """Reads a JSON scene file (meshes inline or from OBJ files, lights, sky, probes)."""
+        """Reads the JSON scene file at path (meshes inline or from OBJ files relative to it, lights, sky,
+        probes); an invalid file raises Error(SCENE) naming what and where."""
         handle = ctypes.c_void_p()
         check(lib.tp_scene_load_file(os.fsencode(path), ctypes.byref(handle)))
         return cls(handle.value)
@@ -45,15 +47,17 @@ class Scene(NativeHandle):
     # ---- content
 
     def add_mesh(self, vertices, indices, albedo=None, emission=(0.0, 0.0, 0.0), two_sided=True):
-        """Adds a mesh of vertices[V, 3] and triangles indices[T, 3] with one material; returns its id.
+        """Adds a mesh of vertices[V, 3] (float32 world units) and triangles indices[T, 3] (integers in
+        [0, V), counter-clockwise seen from the front) with one material; returns the mesh's id (int).
 
-        albedo None takes the library's default; emission is emitted radiance."""
+        albedo=(r, g, b): diffuse reflectance, each in [0, 1] (None = the library's default);
+        emission=(r, g, b): emitted radiance, >= 0; two_sided=False makes only the front face reflect
+        and emit.
+        An index outside [0, V) raises Error(INVALID_ARGUMENT) from the library."""
         points, _, _ = rows(vertices, 3, "vertices")
         points = np.ascontiguousarray(points)
-        triangles = np.asarray(indices)
-        if triangles.size and (triangles.min() < 0 or triangles.max() > 0xFFFFFFFF):
-            raise Error(Status.INVALID_ARGUMENT, "indices must be in [0, %d)" % points.shape[0])
-        triangles = np.ascontiguousarray(triangles, dtype=np.uint32).reshape(-1, 3)
+        triangles, _, _ = rows(indices, 3, "indices", np.uint32)
+        triangles = np.ascontiguousarray(triangles)
         material = _native.Material()
         check(lib.tp_material_init(ctypes.byref(material)))
         if albedo is not None:
@@ -85,23 +89,34 @@ class Scene(NativeHandle):
         return index.value
 
     def add_directional_light(self, direction, color, intensity=1.0, mode="baked", shadows=True):
-        """A light travelling along `direction`; intensity is the irradiance on a surface facing it."""
+        """Adds a directional light travelling along direction=(x, y, z) (need not be unit length) of linear
+        color=(r, g, b); intensity scales color to the irradiance on a surface facing the light.
+        mode: "baked" (direct and bounced light go into the probes) or "realtime" (the engine draws the
+        direct light; only its bounced light is baked); shadows: whether it casts shadows. Returns the
+        light's id (int)."""
         return self._add_light(_native.LIGHT_DIRECTIONAL, color, intensity, mode, shadows, direction=direction)
 
     def add_point_light(self, position, color, intensity=1.0, range=math.inf, mode="baked", shadows=True):
-        """A point light of radiant intensity `intensity` (irradiance intensity/d^2 at distance d)."""
+        """Adds a point light at position=(x, y, z) (world units) of linear color=(r, g, b) and radiant
+        intensity `intensity` (irradiance color * intensity / d^2 at distance d, facing it), no light
+        beyond range (world units, math.inf = unlimited); mode and shadows as in add_directional_light.
+        Returns the light's id (int)."""
         return self._add_light(_native.LIGHT_POINT, color, intensity, mode, shadows, position=position, range=range)
 
     def add_spot_light(self, position, direction, color, intensity=1.0, range=math.inf, inner_angle=None,
                        outer_angle=None, mode="baked", shadows=True):
-        """A spot light; angles are full cone angles in degrees (None = the library's defaults)."""
+        """Adds a spot light at position=(x, y, z) (world units) shining along direction=(x, y, z) of linear
+        color=(r, g, b), intensity and range as add_point_light; inner_angle and outer_angle are full
+        cone angles in degrees (full intensity inside inner_angle, none beyond outer_angle; None = the
+        library's defaults); mode and shadows as in add_directional_light. Returns the light's id (int)."""
         return self._add_light(_native.LIGHT_SPOT, color, intensity, mode, shadows, position=position,
                                direction=direction, range=range, inner_angle=inner_angle, outer_angle=outer_angle)
 
     def set_sky(self, color=None, sh=None):
-        """A sky of constant radiance color=(r, g, b), or of SH radiance sh[27]; exactly one of them."""
+        """Sets the sky: constant linear radiance color=(r, g, b), or radiance given as SH sh[27] (float32,
+        channel-major, the SH contract of tetprobe.sh); exactly one of them."""
         if (color is None) == (sh is None):
-            raise Error(Status.INVALID_ARGUMENT, "set_sky takes exactly one of color and sh")
+            raise ValueError("set_sky takes exactly one of color and sh")
         if color is not None:
             check(lib.tp_scene_set_sky_color(self._live(), vector(color, 3, "color")))
         else:
@@ -109,7 +124,8 @@ class Scene(NativeHandle):
 
     @property
     def probes(self):
-        """The scene's probe positions[N, 3] (a copy)."""
+        """The scene's probe positions as positions[N, 3] float32 world units (a copy); assign an [N, 3]
+        array to replace them."""
         data, count = ctypes.c_void_p(), ctypes.c_size_t()
         check(lib.tp_scene_probes(self._live(), ctypes.byref(data), ctypes.byref(count)))
         if count.value == 0:
@@ -129,7 +145,7 @@ def _options(rays, bounces, seed, threads, progress, culling=True):
     check(lib.tp_bake_options_init(ctypes.byref(options)))
     for name, value in (("rays", rays), ("bounces", bounces), ("seed", seed), ("threads", threads)):
         if value < 0:
-            raise Error(Status.INVALID_ARGUMENT, "%s must be >= 0 (got %d)" % (name, value))
+            raise ValueError("%s must be >= 0 (got %d)" % (name, value))
     options.rays, options.bounces, options.seed, options.threads = rays, bounces, seed, threads
     options.flags = 0 if culling else _native.BAKE_NO_CULLING
     callback = Progress(progress)
@@ -144,10 +160,15 @@ def _positions(scene, positions):
 
 
 def bake(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress=None, culling=True):
-    """Bakes the SH of incoming radiance at positions[N, 3] (None = the scene's probes) -> sh[N, 27].
+    """Bakes the SH of incoming radiance at positions[N, 3] (float32 world units; None = the scene's
+    probes) -> sh[N, 27] float32, channel-major [r0..r8, g0..g8, b0..b8] (radiance, not pre-convolved;
+    feed it to Store.build).
 
-    bounces counts surface reflections between an emitter and the probe; the same seed gives the
-    same result whatever the thread count; progress(fraction, stage) may return True to cancel."""
+    scene: a Scene. rays: rays per probe; bounces: surface reflections between an emitter (light, sky,
+    emissive surface) and the probe (0 = only light arriving directly); seed: the same seed gives the
+    same bytes whatever the thread count; threads: worker threads (0 = all cores); progress: a callable
+    progress(fraction, stage) that may return True to cancel (Error(CANCELLED)); culling=False turns off
+    shadow-caster culling (a test aid: same result, slower)."""
     points, stride = _positions(scene, positions)
     options, callback = _options(rays, bounces, seed, threads, progress, culling)
     out = np.empty((points.shape[0], SH_FLOATS), dtype=np.float32)
@@ -159,7 +180,12 @@ def bake(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress
 
 
 def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress=None, culling=True):
-    """The effects plan of a bake with the same arguments, as a dict (with its one-line summary in 'text')."""
+    """What bake(scene, positions, ...) with the same arguments will simulate, as a dict: lights,
+    direct_lights, realtime_lights, out_of_range_lights, sky (bool), emissive_meshes, bounces, shadows
+    (bool), meshes, shadow_casters, shadow_caster_candidates, and text (the one-line summary).
+
+    scene, positions[N, 3] (float32 world units; None = the scene's probes), rays, bounces, seed, threads, progress and
+    culling as in bake; progress is not called (planning is quick)."""
     points, stride = _positions(scene, positions)
     options, _ = _options(rays, bounces, seed, threads, progress, culling)
     plan = _native.EffectsPlan()

@@ -1,13 +1,23 @@
-"""SH helpers of the C ABI (the contract is in capi/tetprobe.h): 27 floats, channel-major."""
+"""SH helpers of the C ABI: evaluate and build the 27-float SH that stores and bakes use.
+
+The SH contract (capi/tetprobe.h): real, orthonormal SH of 3 bands (L2), 9 coefficients per colour
+channel, 27 float32 per probe, channel-major [r0..r8, g0..g8, b0..b8] (Unity's SphericalHarmonicsL2
+layout), in the order L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22 with Y1-1 ~ y, Y10 ~ z, Y11 ~ x in
+the caller's own frame. A probe holds the projection of incoming radiance (not pre-convolved);
+irradiance applies the clamped-cosine convolution (pi, 2pi/3, pi/4 per band).
+"""
+
+from ctypes import byref, c_float
 
 import numpy as np
 
-from ._arrays import vector
-from ._native import SH_FLOATS, check, lib
+from ._arrays import as_array, vector
+from ._native import (SH_FLOATS, SH_ORDER_L1, SH_ORDER_L2, SH_ORDER_ZH3, SH_WINDOW_NONE, SH_WINDOW_NONNEGATIVE,
+                      SH_WINDOW_SLOAN, ShEvalOptions, check, lib)
 
 
 def eval_radiance(sh, direction):
-    """Radiance (r, g, b) arriving from unit `direction`."""
+    """Radiance rgb[3] float32 arriving from unit direction[3] (pointing away from the probe) for sh[27]."""
     out = np.empty(3, dtype=np.float32)
     check(lib.tp_sh_eval_radiance(vector(sh, SH_FLOATS, "sh"), vector(direction, 3, "direction"),
                                   out))
@@ -15,7 +25,8 @@ def eval_radiance(sh, direction):
 
 
 def eval_irradiance(sh, normal):
-    """Irradiance (r, g, b) on a surface with unit `normal` (clamped-cosine convolution)."""
+    """Irradiance rgb[3] float32 on a surface with unit normal[3] lit by the radiance sh[27] (clamped-cosine
+    convolution)."""
     out = np.empty(3, dtype=np.float32)
     check(lib.tp_sh_eval_irradiance(vector(sh, SH_FLOATS, "sh"), vector(normal, 3, "normal"),
                                     out))
@@ -23,15 +34,112 @@ def eval_irradiance(sh, normal):
 
 
 def ambient(rgb, sh=None):
-    """sh[27] (a new zero array when None) plus uniform radiance rgb from every direction."""
+    """A new sh[27] float32: sh[27] (None = zeros; not modified) plus uniform radiance rgb[3] arriving from
+    every direction."""
     out = np.zeros(SH_FLOATS, dtype=np.float32) if sh is None else vector(sh, SH_FLOATS, "sh").copy()
     check(lib.tp_sh_add_ambient(out, vector(rgb, 3, "rgb")))
     return out
 
 
 def directional(direction, rgb, sh=None):
-    """sh[27] plus a directional light travelling along `direction` with irradiance rgb facing it."""
+    """A new sh[27] float32: sh[27] (None = zeros; not modified) plus a directional light travelling along
+    unit direction[3] whose irradiance on a surface facing it is rgb[3]."""
     out = np.zeros(SH_FLOATS, dtype=np.float32) if sh is None else vector(sh, SH_FLOATS, "sh").copy()
     check(lib.tp_sh_add_directional(out, vector(direction, 3, "direction"),
                                     vector(rgb, 3, "rgb")))
     return out
+
+
+#: Evaluation orders and windows (see eval_options); names or the C ABI's TP_SH_ORDER_* / TP_SH_WINDOW_* values.
+ORDERS = {"l2": SH_ORDER_L2, "l1": SH_ORDER_L1, "zh3": SH_ORDER_ZH3}
+WINDOWS = {"none": SH_WINDOW_NONE, "sloan": SH_WINDOW_SLOAN, "nonnegative": SH_WINDOW_NONNEGATIVE}
+
+
+def _choice(value, table, name):
+    if isinstance(value, str):
+        if value.lower() not in table:
+            raise ValueError("%s must be one of %s (got %r)" % (name, ", ".join(table), value))
+        return table[value.lower()]
+    return int(value)
+
+
+def eval_options(order="l2", window="none", strength=0.0):
+    """A tp_sh_eval_options struct: order "l2" (27 floats), "l1" (bands 0-1) or "zh3" (L1 plus a zonal L2
+    term estimated from it); window "none", "sloan" (band l scaled by 1 / (1 + strength (l(l+1))^2)) or
+    "nonnegative" (the smallest such strength keeping the irradiance >= 0; strength not read); strength
+    is a float >= 0."""
+    options = ShEvalOptions()
+    check(lib.tp_sh_eval_options_init(byref(options)))
+    options.order = _choice(order, ORDERS, "order")
+    options.window = _choice(window, WINDOWS, "window")
+    options.window_strength = float(strength)
+    return options
+
+
+def _sh_rows(sh):
+    data = np.ascontiguousarray(as_array(sh, "sh"))
+    if data.shape[-1:] != (SH_FLOATS,) or data.ndim not in (1, 2):
+        raise ValueError("sh must have shape [27] or [M, 27] (got %s)" % (np.shape(sh),))
+    return data.reshape(-1, SH_FLOATS), data.ndim == 1
+
+
+def eval_irradiance_ex(sh, normals, order="l2", window="none", strength=0.0):
+    """Irradiance (r, g, b), as eval_irradiance gives it, under the evaluation options.
+
+    sh is [27] or [M, 27] (channel-major), normals [3] or [M, 3] (unit length is not required); one side
+    may be single and is then used for every row of the other. order, window and strength as in
+    eval_options. Returns float32 [3] when both are single, else [M, 3]."""
+    options = eval_options(order, window, strength)
+    rows, single_sh = _sh_rows(sh)
+    n = np.ascontiguousarray(as_array(normals, "normals"))
+    if n.shape[-1:] != (3,) or n.ndim not in (1, 2):
+        raise ValueError("normals must have shape [3] or [M, 3] (got %s)" % (np.shape(normals),))
+    single_n = n.ndim == 1
+    n = n.reshape(-1, 3)
+    count = max(len(rows), len(n))
+    if len(rows) not in (1, count) or len(n) not in (1, count):
+        raise ValueError("sh has %d rows and normals %d; they must match or one be single" % (len(rows), len(n)))
+    out = np.empty((count, 3), dtype=np.float32)
+    for i in range(count):
+        check(lib.tp_sh_eval_irradiance_ex(rows[i if len(rows) > 1 else 0], n[i if len(n) > 1 else 0],
+                                           byref(options), out[i]))
+    return out[0] if single_sh and single_n else out
+
+
+def apply_options(sh, order="l2", window="none", strength=0.0):
+    """A copy of sh ([27] or [M, 27], channel-major) rewritten so that plain eval_irradiance is the evaluation
+    chosen by order, window and strength (as in eval_options)."""
+    options = eval_options(order, window, strength)
+    rows, single = _sh_rows(sh)
+    out = rows.copy()
+    for row in out:
+        check(lib.tp_sh_apply_options(row, byref(options)))
+    return out[0] if single else out
+
+
+def min_irradiance(sh, order="l2", window="none", strength=0.0):
+    """(min_rgb, normal): each channel's smallest irradiance over all unit normals under the options, and
+    the unit normal where the smallest of the three occurs; [3] and [3] for sh [27], [M, 3] each for
+    [M, 27]. order, window and strength as in eval_options. Exact to double rounding (the trust-region
+    solution), not sampled."""
+    options = eval_options(order, window, strength)
+    rows, single = _sh_rows(sh)
+    minima = np.empty((len(rows), 3), dtype=np.float32)
+    normals = np.empty((len(rows), 3), dtype=np.float32)
+    for i, row in enumerate(rows):
+        check(lib.tp_sh_min_irradiance(row, byref(options), minima[i], normals[i]))
+    return (minima[0], normals[0]) if single else (minima, normals)
+
+
+def nonnegative_window_strength(sh, order="l2"):
+    """The Sloan window strength the "nonnegative" window picks for sh under order (as in eval_options): a
+    float for sh [27], an array [M] for [M, 27]; 0 when the irradiance is already non-negative, inf if no
+    finite one does."""
+    options = eval_options(order)
+    rows, single = _sh_rows(sh)
+    out = np.empty(len(rows), dtype=np.float32)
+    value = c_float()
+    for i, row in enumerate(rows):
+        check(lib.tp_sh_nonnegative_window_strength(row, byref(options), byref(value)))
+        out[i] = value.value
+    return float(out[0]) if single else out

@@ -7,13 +7,14 @@ import numpy as np
 
 from . import _native
 from ._handle import NativeHandle
-from ._arrays import Progress, rows
+from ._arrays import Progress, as_array, rows
 from ._native import SH_FLOATS, check, lib
-from .errors import Error, Status
 
 
 class Store(NativeHandle):
-    """An immutable probe store. Build it with Store.build or read it with Store.load."""
+    """An immutable probe store. Build it with Store.build or read it with Store.load; any number of threads
+    may query one store at once. close() or a `with` block releases it (so does garbage collection);
+    a closed store raises Error(INVALID_ARGUMENT, "the store is closed")."""
 
     _release = staticmethod(lib.tp_store_release)
     _noun = "store"
@@ -28,20 +29,25 @@ class Store(NativeHandle):
     @classmethod
     def build(cls, positions, sh=None, *, compact=False, extrapolate=True, index32=False, merge_tolerance=None,
               flat_tolerance=None, progress=None):
-        """Builds a store from positions[N, 3] (float32, world units) and sh[N, 27] (None = zeros).
+        """Builds a store from probe positions[N, 3] and their SH sh[N, 27] (None = all zeros).
 
+        positions: float32 world units (other number dtypes are converted), one row per probe; any row
+        stride. sh: 27 float32 per probe, channel-major [r0..r8, g0..g8, b0..b8] in the order L00, L1-1,
+        L10, L11, L2-2, L2-1, L20, L21, L22 (radiance, not pre-convolved); the store keeps them as half
+        floats. Duplicate and near-duplicate probes are merged (the first given survives, SH averaged).
         compact=True writes the compact layout (the smallest blob: no neighbour section, rebuilt when
         the store is loaded); its answers are the fast layout's (same cells, weights within 1e-6).
         extrapolate=False builds no outer cells (queries outside the hull raise Error(OUTSIDE));
-        index32 forces 32-bit indices; tolerances are fractions of the set's diagonal (None = the
-        library's default); progress(fraction, stage) may return True to cancel."""
+        index32=True forces 32-bit indices; merge_tolerance and flat_tolerance are fractions of the
+        set's bounding-box diagonal (None = the library's defaults, 1e-6 and 1e-4); progress is a
+        callable progress(fraction, stage) called on this thread that may return True to cancel
+        (Error(CANCELLED)). Raises ValueError/TypeError for a wrong shape or dtype, Error otherwise."""
         points, point_stride, _ = rows(positions, 3, "positions")
         coefficients, sh_stride = None, 0
         if sh is not None:
             coefficients, sh_stride, _ = rows(sh, SH_FLOATS, "sh")
             if coefficients.shape[0] != points.shape[0]:
-                raise Error(Status.INVALID_ARGUMENT, "sh has %d rows for %d positions" %
-                            (coefficients.shape[0], points.shape[0]))
+                raise ValueError("sh has %d rows for %d positions" % (coefficients.shape[0], points.shape[0]))
         options = _native.BuildOptions()
         check(lib.tp_build_options_init(ctypes.byref(options)))
         options.flags = (0 if extrapolate else _native.BUILD_NO_EXTRAPOLATION) | \
@@ -62,7 +68,9 @@ class Store(NativeHandle):
 
     @classmethod
     def load(cls, source):
-        """Loads and validates a store from a file path or from bytes (bytes, bytearray, memoryview)."""
+        """Loads and validates a store from source: a file path (str or os.PathLike) or the blob itself
+        (bytes, bytearray or memoryview, copied). Safe for untrusted input: a bad blob raises
+        Error(INVALID_BLOB) or Error(VERSION), a missing file Error(IO)."""
         handle = ctypes.c_void_p()
         if isinstance(source, (bytes, bytearray, memoryview)):
             data = np.frombuffer(source, dtype=np.uint8)
@@ -74,21 +82,22 @@ class Store(NativeHandle):
     # ---- blob
 
     def save(self, path):
-        """Writes the blob to path atomically."""
+        """Writes the blob to path (str or os.PathLike) atomically: a temporary file, then a rename."""
         check(lib.tp_store_save_file(self._live(), os.fsencode(path)))
 
     def to_bytes(self):
-        """The store's blob as bytes."""
+        """The store's blob as bytes (what save writes and load reads)."""
         data, size = ctypes.c_void_p(), ctypes.c_size_t()
         check(lib.tp_store_blob(self._live(), ctypes.byref(data), ctypes.byref(size)))
         return ctypes.string_at(data.value, size.value)
 
     def info(self):
-        """Counts and layout: probes, cells, inner_cells, outer_cells, merged_probes, index_bits, bytes, ...
-
-        format_version is the blob's store format (3); flags are the TP_BUILD_* bits of the blob
-        (BUILD_INDEX32 whenever it uses 32-bit indices); compact is True for the compact layout,
-        False for the fast one; bytes is the blob's size."""
+        """Counts and layout as a dict: probes, input_probes, merged_probes, cells, inner_cells,
+        outer_cells, index_bits (16 or 32), bytes (the blob's size), format_version (3), dimension of
+        the probe set (0 point, 1 line, 2 flat, 3 general), flags (TP_BUILD_* bits of the blob;
+        BUILD_INDEX32 whenever it uses 32-bit indices), compact (True for the compact layout),
+        extrapolation, grid (cold-start grid cells along x, y, z), origin (the local origin, world
+        units, float64), bounds_min and bounds_max (world units, float32 values)."""
         info = _native.StoreInfo()
         info.struct_size = ctypes.sizeof(info)
         check(lib.tp_store_get_info(self._live(), ctypes.byref(info)))
@@ -113,7 +122,9 @@ class Store(NativeHandle):
         }
 
     def probe_sh(self, probe):
-        """The stored (half-precision) SH[27] of input probe `probe` (a merged probe reads its survivor)."""
+        """The stored SH of input probe index `probe` (an int in [0, input_probes)) as sh[27] float32,
+        channel-major; the store keeps half floats, so these are the input rounded to half. A merged
+        probe reads its survivor."""
         out = np.empty(SH_FLOATS, dtype=np.float32)
         check(lib.tp_store_probe_sh(self._live(), int(probe), out))
         return out
@@ -127,10 +138,20 @@ class Store(NativeHandle):
             return None if chain_hints else np.full(count, -1, dtype=np.int32)
         if chain_hints:
             raise ValueError("chain_hints applies only to batches without hints")
-        out = np.array(hints, dtype=np.int32).reshape(-1)
+        out = np.array(as_array(hints, "hints", np.int32)).reshape(-1)
         if out.shape[0] != count:
             raise ValueError("hints has %d entries for %d points" % (out.shape[0], count))
         return out
+
+    @staticmethod
+    def _single_hint(hints):
+        """The cell hint of a single query: -1 for None, else the one int given (a scalar or [1])."""
+        if hints is None:
+            return ctypes.c_int32(-1)
+        values = as_array(hints, "hints", np.int32).reshape(-1)
+        if values.shape[0] != 1:
+            raise ValueError("hints has %d entries for 1 point" % values.shape[0])
+        return ctypes.c_int32(int(values[0]))
 
     @staticmethod
     def _batch_options(threads, chain_hints):
@@ -144,15 +165,24 @@ class Store(NativeHandle):
         return options
 
     def interpolate(self, points, hints=None, threads=1, chain_hints=False):
-        """Interpolated SH at points[M, 3] (float32, world units) -> (sh[M, 27] float32, hints[M] int32).
+        """Interpolated SH at points[M, 3] -> (sh[M, 27] float32, hints[M] int32).
 
-        A point of shape [3] gives (sh[27], hint). hints[M] are the cells of the previous queries
-        (-1 = none; None = all -1); the returned hints are the cells found. threads: how many threads
-        the library may split the batch over (0 or 1 = the calling thread). chain_hints=True (only
-        with hints=None) starts each query from the previous query's cell, for points given in a
-        spatially coherent order; the library then reports no cells and the returned hints are None.
-        Points outside a store built with extrapolate=False raise Error(OUTSIDE) naming the first."""
+        points: float32 world units (other number dtypes are converted), any row stride. sh rows are
+        channel-major [r0..r8, g0..g8, b0..b8] radiance SH (evaluate with tetprobe.sh). hints[M] int32
+        are the cells the same objects were found in last time (-1 = none; None = all -1): keep one per
+        moving object and pass the returned array back next frame. threads: how many threads the
+        library may split the batch over (0 or 1 = the calling thread; only batches of more than 4,096
+        points are split). chain_hints=True (only with hints=None) starts each query from the previous
+        query's cell, for points given in a spatially coherent order; the returned hints are then None.
+        A single point of shape [3] (with hints None or one int) is one tp_store_interpolate call and
+        gives (sh[27], hint int). Points outside a store built with extrapolate=False raise
+        Error(OUTSIDE) naming the first."""
         data, stride, single = rows(points, 3, "points")
+        if single and not chain_hints:
+            cell = self._single_hint(hints)
+            out = np.empty(SH_FLOATS, dtype=np.float32)
+            check(lib.tp_store_interpolate(self._live(), data, ctypes.byref(cell), out))
+            return out, cell.value
         count = data.shape[0]
         cells = self._hints(hints, count, chain_hints)
         options = self._batch_options(threads, chain_hints)
@@ -160,16 +190,25 @@ class Store(NativeHandle):
         check(lib.tp_store_interpolate_batch(self._live(), count, data, stride, cells, 4,
                                              out, SH_FLOATS * 4, ctypes.byref(options)))
         if single:
-            return out[0], (None if cells is None else int(cells[0]))
+            return out[0], None
         return out, cells
 
     def weights(self, points, hints=None, threads=1, chain_hints=False):
-        """Blended probes and weights at points[M, 3] -> (indices[M, 4] int64, weights[M, 4] float32, hints[M]).
+        """Blended probes and weights at points[M, 3] -> (indices[M, 4] int64, weights[M, 4] float32,
+        hints[M] int32).
 
-        indices are input probe indices (survivors of merges); unused slots weigh 0 and repeat a used
-        probe. hints, threads and chain_hints as in interpolate; a point of shape [3] gives
-        (indices[4], weights[4], hint)."""
+        indices are input probe indices (survivors of merges) in [0, input_probes); unused slots weigh 0
+        and repeat a used probe. Inside the hull the weights are the Delaunay barycentrics, in [0, 1],
+        summing to 1; a query at a probe weighs it exactly 1. points[M, 3] (float32 world units),
+        hints[M] (int32 cells, -1 = none), threads and chain_hints as in interpolate; a single point of
+        shape [3] is one tp_store_weights call and gives (indices[4], weights[4], hint int)."""
         data, stride, single = rows(points, 3, "points")
+        if single and not chain_hints:
+            cell = self._single_hint(hints)
+            probes = np.empty(4, dtype=np.uint32)
+            weights = np.empty(4, dtype=np.float32)
+            check(lib.tp_store_weights(self._live(), data, ctypes.byref(cell), probes, weights))
+            return probes.astype(np.int64), weights, cell.value
         count = data.shape[0]
         cells = self._hints(hints, count, chain_hints)
         options = self._batch_options(threads, chain_hints)
@@ -179,12 +218,17 @@ class Store(NativeHandle):
                                          probes, 16, weights, 16, ctypes.byref(options)))
         indices = probes.astype(np.int64)
         if single:
-            return indices[0], weights[0], (None if cells is None else int(cells[0]))
+            return indices[0], weights[0], None
         return indices, weights, cells
 
     def locate(self, point, hint=-1):
-        """Diagnostics of one query: cell, kind ("inner"/"outer"), steps, fallback, probes, weights, t."""
-        data, _, _ = rows(point, 3, "point")
+        """Diagnostics of one query at point[3] (float32 world units) starting from cell `hint` (-1 = cold)
+        as a dict: cell, kind ("inner" or "outer"), steps (cells walked after the start), fallback
+        (True if the exhaustive search decided, outside the hull only), probes (4 input probe indices),
+        weights (4 floats), t (outer cells: the ray parameter, 0 on the hull) and hint (the cell found)."""
+        data, _, single = rows(point, 3, "point")
+        if not single:
+            raise ValueError("point must have shape [3] (got %s)" % (np.shape(point),))
         location = _native.Location()
         location.struct_size = ctypes.sizeof(location)
         cell = ctypes.c_int32(int(hint))

@@ -7,7 +7,6 @@ import numpy as np
 from . import _native
 from ._arrays import rows, vector
 from ._native import check, lib
-from .errors import Error, Status
 
 _TYPES = {"directional": (_native.LIGHT_DIRECTIONAL, "direction"), "point": (_native.LIGHT_POINT, "position"),
           "spot": (_native.LIGHT_SPOT, "position")}
@@ -19,18 +18,18 @@ def _light(light):
     if isinstance(light, dict):
         kind = light.get("type")
         if kind not in _TYPES:
-            raise Error(Status.INVALID_ARGUMENT, "light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
+            raise ValueError("light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
         key = _TYPES[kind][1]
         if key not in light:
-            raise Error(Status.INVALID_ARGUMENT, "a %s light needs '%s'" % (kind, key))
+            raise ValueError("a %s light needs '%s'" % (kind, key))
         value = light[key]
     else:
         try:
             kind, value = light
         except (TypeError, ValueError):
-            raise Error(Status.INVALID_ARGUMENT, "light must be a dict or a (type, xyz) pair")
+            raise TypeError("light must be a dict or a (type, xyz) pair (got %r)" % (light,)) from None
         if kind not in _TYPES:
-            raise Error(Status.INVALID_ARGUMENT, "light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
+            raise ValueError("light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
     return _TYPES[kind][0], vector(value, 3, "light vector")
 
 
@@ -40,9 +39,14 @@ def _planes(planes):
 
 
 def shadow_caster_volume(planes, light):
-    """Inward planes[J, 4] (n.x + d >= 0 inside) of everything that can cast a shadow from `light`
-    into the bounded convex polyhedron planes[K, 4]. light: {"type": "point", "position": xyz},
-    {"type": "directional", "direction": xyz} (the direction the light travels), or ("point", xyz)."""
+    """The shadow caster volume of `light` into a region: planes[K, 4] -> planes[J, 4] float32.
+
+    planes[K, 4]: float32 rows (nx, ny, nz, d) of inward planes (a point x is inside when n.x + d >= 0)
+    bounding a convex polyhedron, e.g. a view frustum or the probes' bounding box, in world units.
+    light: {"type": "point" or "spot", "position": (x, y, z)}, {"type": "directional", "direction":
+    (x, y, z)} (the direction the light travels), or a pair such as ("point", (x, y, z)). The result
+    holds everything that can cast a shadow from the light into the region, in the same plane form;
+    test objects against it with volume_test_aabb and volume_test_sphere."""
     data = _planes(planes)
     light_type, light_vector = _light(light)
     capacity = lib.tp_shadow_caster_volume_bound(data.shape[0])
@@ -54,7 +58,8 @@ def shadow_caster_volume(planes, light):
 
 
 def volume_test_aabb(planes, box_min, box_max):
-    """False only if the box certainly lies outside the volume (conservative)."""
+    """Whether the axis-aligned box box_min[3]..box_max[3] (world units) may intersect the volume of
+    inward planes[K, 4] (rows nx, ny, nz, d): False only if it certainly lies outside (conservative)."""
     data = _planes(planes)
     hit = ctypes.c_int()
     check(lib.tp_volume_test_aabb(data, data.shape[0], vector(box_min, 3, "box_min"),
@@ -63,7 +68,8 @@ def volume_test_aabb(planes, box_min, box_max):
 
 
 def volume_test_sphere(planes, center, radius):
-    """False only if the sphere certainly lies outside the volume (conservative)."""
+    """Whether the sphere of center[3] and radius (world units, >= 0) may intersect the volume of inward
+    planes[K, 4] (rows nx, ny, nz, d): False only if it certainly lies outside (conservative)."""
     data = _planes(planes)
     hit = ctypes.c_int()
     check(lib.tp_volume_test_sphere(data, data.shape[0], vector(center, 3, "center"),

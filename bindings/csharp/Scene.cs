@@ -1,0 +1,105 @@
+// Layer 3: Scene, what the bake sees (triangle meshes with materials, lights, a sky, probe positions).
+using System;
+#if UNITY_5_3_OR_NEWER
+using Vector3 = UnityEngine.Vector3;
+#endif
+
+namespace TetProbe
+{
+    /// <summary>A bake scene over a native tp_scene. Needs the full library (the run-time library refuses every scene
+    /// call with TetProbeStatus.Unsupported).</summary>
+    public sealed class Scene : IDisposable
+    {
+        readonly SceneHandle handle;
+
+        /// <summary>An empty scene: no meshes, no lights, a black sky.</summary>
+        public Scene() : this(NativeProxy.CreateScene()) { }
+
+        Scene(SceneHandle handle)
+        {
+            this.handle = handle;
+        }
+
+        /// <summary>Reads a JSON scene file (meshes inline or from OBJ files relative to it, lights, sky, probes).</summary>
+        public static Scene Load(string path)
+        {
+            return new Scene(NativeProxy.LoadScene(path));
+        }
+
+        /// <summary>Adds a mesh of triangles indices[3 t .. 3 t + 2] over vertices, all of one material; returns its id.</summary>
+        public int AddMesh(Vector3[] vertices, int[] indices, Material material)
+        {
+            return AddMesh(vertices, indices, new[] { material }, null);
+        }
+
+        /// <summary>Adds a mesh whose triangle t uses materials[triangleMaterials[t]] (triangleMaterials null: all use
+        /// materials[0]); returns its id.</summary>
+        public int AddMesh(Vector3[] vertices, int[] indices, Material[] materials, int[] triangleMaterials)
+        {
+            if (vertices == null) throw new ArgumentNullException("vertices");
+            if (indices == null) throw new ArgumentNullException("indices");
+            if (materials == null) throw new ArgumentNullException("materials");
+            if (indices.Length % 3 != 0)
+                throw new ArgumentException("indices holds " + indices.Length + " values, not 3 per triangle", "indices");
+            if (materials.Length == 0) throw new ArgumentException("materials is empty", "materials");
+            if (triangleMaterials != null && triangleMaterials.Length != indices.Length / 3)
+                throw new ArgumentException("triangleMaterials holds " + triangleMaterials.Length + " for " + indices.Length / 3 +
+                                            " triangles", "triangleMaterials");
+            var sized = new Material[materials.Length];
+            for (int i = 0; i < materials.Length; ++i) sized[i] = materials[i].Sized();
+            return NativeProxy.AddMesh(Live(), vertices, Unsigned(indices, "indices"), sized,
+                                       triangleMaterials == null ? null : Unsigned(triangleMaterials, "triangleMaterials"));
+        }
+
+        static uint[] Unsigned(int[] values, string name)
+        {
+            var result = new uint[values.Length];
+            for (int i = 0; i < values.Length; ++i)
+            {
+                if (values[i] < 0) throw new ArgumentOutOfRangeException(name, values[i], name + "[" + i + "] is negative");
+                result[i] = (uint)values[i];
+            }
+            return result;
+        }
+
+        /// <summary>Adds a light (made by Light.Directional, Light.Point or Light.Spot); returns its id.</summary>
+        public int AddLight(Light light)
+        {
+            return NativeProxy.AddLight(Live(), light.Sized());
+        }
+
+        /// <summary>A sky of constant radiance (r, g, b).</summary>
+        public void SetSky(Vector3 rgb)
+        {
+            NativeProxy.SetSky(Live(), rgb);
+        }
+
+        /// <summary>A sky whose radiance is the SH `sh` (the contract of capi/tetprobe.h, not Unity's convention).</summary>
+        public void SetSky(SphericalHarmonicsL2 sh)
+        {
+            NativeProxy.SetSky(Live(), sh);
+        }
+
+        /// <summary>The scene's probe positions (from its file, or set here); copies in and out.</summary>
+        public Vector3[] Probes
+        {
+            get { return NativeProxy.Probes(Live()); }
+            set
+            {
+                if (value == null) throw new ArgumentNullException("value");
+                NativeProxy.SetProbes(Live(), value);
+            }
+        }
+
+        internal SceneHandle Live()
+        {
+            if (handle.IsClosed) throw new ObjectDisposedException("Scene");
+            return handle;
+        }
+
+        public void Dispose()
+        {
+            handle.Dispose();
+        }
+    }
+}

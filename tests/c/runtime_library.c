@@ -1,0 +1,56 @@
+/* The run-time library: every bake-time entry point exists (both libraries export the same names) and
+   refuses with TP_ERROR_UNSUPPORTED and a message naming itself, clearing its outputs. */
+#include "harness.h"
+
+static void expect_unsupported(tp_status status, const char* function, const char* call, int line) {
+    harness_check_status(status, TP_ERROR_UNSUPPORTED, call, __FILE__, line);
+    harness_check(strstr(tp_last_error(), function) != NULL, "the message names the function", __FILE__, line);
+}
+
+#define EXPECT_UNSUPPORTED(function, call) expect_unsupported((call), #function, #call, __LINE__)
+
+void test_runtime_library_refuses_bake_time(void) {
+    const float positions[12] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const uint32_t indices[3] = {0, 1, 2};
+    const float rgb[3] = {1, 1, 1};
+    float sh[27], out[27];
+    tp_store* store = (tp_store*)(void*)&out; /* a non-NULL garbage value the call must clear */
+    tp_scene* scene = (tp_scene*)(void*)&out;
+    tp_material material;
+    tp_light light;
+    tp_bake_options options;
+    tp_effects_plan plan;
+    const float* listed = positions;
+    size_t listed_count = 7;
+    uint32_t id = 0;
+    char text[32] = "untouched";
+    memset(sh, 0, sizeof sh);
+    tp_material_init(&material);
+    tp_light_init(&light);
+    tp_bake_options_init(&options);
+    memset(&plan, 0, sizeof plan);
+    plan.struct_size = sizeof plan;
+
+    EXPECT_UNSUPPORTED(tp_store_build, tp_store_build(positions, 0, NULL, 0, 4, NULL, &store));
+    CHECK(store == NULL);
+    EXPECT_UNSUPPORTED(tp_scene_create, tp_scene_create(&scene));
+    CHECK(scene == NULL);
+    scene = (tp_scene*)(void*)&out;
+    EXPECT_UNSUPPORTED(tp_scene_load_file, tp_scene_load_file("scene.json", &scene));
+    CHECK(scene == NULL);
+    EXPECT_OK(tp_scene_release(NULL));
+    /* No scene can exist here, so every function taking one refuses whatever it is given. */
+    EXPECT_UNSUPPORTED(tp_scene_add_mesh, tp_scene_add_mesh(NULL, positions, 4, indices, 1, &material, 1, NULL, &id));
+    EXPECT_UNSUPPORTED(tp_scene_add_light, tp_scene_add_light(NULL, &light, &id));
+    EXPECT_UNSUPPORTED(tp_scene_set_sky_color, tp_scene_set_sky_color(NULL, rgb));
+    EXPECT_UNSUPPORTED(tp_scene_set_sky_sh, tp_scene_set_sky_sh(NULL, sh));
+    EXPECT_UNSUPPORTED(tp_scene_probes, tp_scene_probes(NULL, &listed, &listed_count));
+    CHECK(listed == NULL && listed_count == 0);
+    EXPECT_UNSUPPORTED(tp_scene_set_probes, tp_scene_set_probes(NULL, positions, 4));
+    EXPECT_UNSUPPORTED(tp_bake_plan, tp_bake_plan(NULL, positions, 0, 4, &options, &plan, text, sizeof text));
+    CHECK(text[0] == '\0');
+    EXPECT_UNSUPPORTED(tp_bake, tp_bake(NULL, positions, 0, 4, &options, out, 0));
+    /* The run-time functions still work after a refusal, and the message is cleared. */
+    EXPECT_OK(tp_sh_add_ambient(sh, rgb));
+    CHECK(tp_last_error()[0] == '\0');
+}

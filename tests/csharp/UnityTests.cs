@@ -1,0 +1,255 @@
+// samples/unity and the Unity conversions, compiled against the stand-ins in unity_stubs/ and run with the real
+// library: a light added on either side evaluates to the same irradiance on the other (the stubs' Unity
+// SphericalHarmonicsL2 follows Unity's published formulas, ShadeSH9 is UnityCG.cginc's), then the editor script bakes
+// a small stub scene and TetProbeLighting lights a renderer from the store it wrote.
+using System;
+using System.IO;
+using System.Reflection;
+using TetProbe;
+using UnityEngine;
+using ProbeSH = TetProbe.SphericalHarmonicsL2;
+using UnitySH = UnityEngine.Rendering.SphericalHarmonicsL2;
+
+static class UnityTests
+{
+    static int passed, failed;
+
+    static void Check(bool condition, string what)
+    {
+        if (condition) { ++passed; return; }
+        ++failed;
+        Console.WriteLine("FAIL: " + what);
+    }
+
+    static Vector3[] Normals(int n, System.Random random)
+    {
+        var normals = new Vector3[n];
+        for (int i = 0; i < n; ++i)
+        {
+            Vector3 v;
+            do v = new Vector3((float)random.NextDouble() * 2 - 1, (float)random.NextDouble() * 2 - 1, (float)random.NextDouble() * 2 - 1);
+            while (v.magnitude < 0.1f || v.magnitude > 1);
+            normals[i] = v.normalized;
+        }
+        normals[0] = new Vector3(0, 1, 0);
+        normals[1] = new Vector3(0, 0, -1);
+        return normals;
+    }
+
+    /// <summary>Largest |pi * ShadeSH9(constants, n) - E(n)| over the normals, relative to the largest |E|.</summary>
+    static double ShaderVersusIrradiance(Vector4[] constants, ProbeSH sh, Vector3[] normals)
+    {
+        double worst = 0, scale = 1e-6;
+        foreach (Vector3 n in normals)
+        {
+            Vector3 shader = UnityCG.ShadeSH9(constants, n);
+            Vector3 irradiance = sh.EvaluateIrradiance(n);
+            scale = Math.Max(scale, Math.Max(Math.Abs(irradiance.x), Math.Max(Math.Abs(irradiance.y), Math.Abs(irradiance.z))));
+            worst = Math.Max(worst, Math.Abs(Math.PI * shader.x - irradiance.x));
+            worst = Math.Max(worst, Math.Abs(Math.PI * shader.y - irradiance.y));
+            worst = Math.Max(worst, Math.Abs(Math.PI * shader.z - irradiance.z));
+        }
+        return worst / scale;
+    }
+
+    static double MaxDifference(ProbeSH a, ProbeSH b)
+    {
+        double worst = 0, scale = 1e-6;
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 9; ++i)
+            {
+                worst = Math.Max(worst, Math.Abs(a[c, i] - b[c, i]));
+                scale = Math.Max(scale, Math.Abs(b[c, i]));
+            }
+        return worst / scale;
+    }
+
+    static Vector4[] Constants(ProbeSH sh)
+    {
+        var constants = new Vector4[7];
+        UnitySphericalHarmonics.ToShaderConstants(sh, constants);
+        return constants;
+    }
+
+    static Vector4[] UnityPacked(UnitySH unity)
+    {
+        var block = new MaterialPropertyBlock();
+        block.CopySHCoefficientArraysFrom(new[] { unity });
+        string[] names = { "unity_SHAr", "unity_SHAg", "unity_SHAb", "unity_SHBr", "unity_SHBg", "unity_SHBb", "unity_SHC" };
+        var constants = new Vector4[7];
+        for (int k = 0; k < 7; ++k) constants[k] = block.GetVectorArray(names[k])[0];
+        return constants;
+    }
+
+    static void Conversions()
+    {
+        var random = new System.Random(3);
+        Vector3[] normals = Normals(300, random);
+
+        // The stubs themselves, against what Unity documents: a flat ambient colour C renders as C, and
+        // AddDirectionalLight(d, C, I) facing d renders as 2 I C (Sloan's normalisation, Unity's doubling).
+        var ambientUnity = new UnitySH();
+        ambientUnity.AddAmbientLight(new Color(0.2f, 0.5f, 1.0f));
+        Vector3 flat = UnityCG.ShadeSH9(UnityPacked(ambientUnity), new Vector3(0.6f, 0, 0.8f));
+        Check(Math.Abs(flat.x - 0.2f) < 1e-6 && Math.Abs(flat.y - 0.5f) < 1e-6 && Math.Abs(flat.z - 1.0f) < 1e-6,
+              "stub: Unity's ambient C renders as C (" + flat + ")");
+        var towards = new Vector3(0.48f, 0.6f, 0.64f);
+        var sunUnity = new UnitySH();
+        sunUnity.AddDirectionalLight(towards, new Color(1, 0.5f, 0.25f), 1.5f);
+        Vector3 facing = UnityCG.ShadeSH9(UnityPacked(sunUnity), towards);
+        Check(Math.Abs(facing.x - 3) < 1e-5 && Math.Abs(facing.y - 1.5) < 1e-5 && Math.Abs(facing.z - 0.75) < 1e-5,
+              "stub: Unity's directional light facing it renders as 2 I C (" + facing + ")");
+
+        // Unity -> ours: the same light, coefficient by coefficient and by irradiance.
+        var ambientOurs = new ProbeSH();
+        ambientOurs.AddAmbientLight(0.2f, 0.5f, 1.0f);
+        ProbeSH ambientConverted = UnitySphericalHarmonics.FromUnity(ambientUnity);
+        Check(MaxDifference(ambientConverted, ambientOurs) < 1e-6, "Unity AddAmbientLight converts to our AddAmbientLight");
+        Check(ShaderVersusIrradiance(UnityPacked(ambientUnity), ambientConverted, normals) < 1e-5,
+              "Unity ambient: pi ShadeSH9 = our irradiance of the converted SH");
+        double weight = 2 * 1.5 * 16 * Math.PI / 17;
+        var sunOurs = new ProbeSH();
+        sunOurs.AddDirectionalLight(-towards, (float)weight, (float)(weight * 0.5), (float)(weight * 0.25));
+        ProbeSH sunConverted = UnitySphericalHarmonics.FromUnity(sunUnity);
+        Check(MaxDifference(sunConverted, sunOurs) < 1e-5, "Unity AddDirectionalLight(d, C, I) converts to our " +
+              "AddDirectionalLight(-d, 2 I C 16pi/17) (" + MaxDifference(sunConverted, sunOurs) + ")");
+        double unityWorst = ShaderVersusIrradiance(UnityPacked(sunUnity), sunConverted, normals);
+        Check(unityWorst < 1e-5, "Unity directional: pi ShadeSH9 = our irradiance of the converted SH (" + unityWorst + ")");
+
+        // Ours -> Unity: any SH (lights and random coefficients) evaluates the same in ShadeSH9 as in the library.
+        for (int trial = 0; trial < 20; ++trial)
+        {
+            var ours = new ProbeSH();
+            ours.AddAmbientLight((float)random.NextDouble(), (float)random.NextDouble(), (float)random.NextDouble());
+            ours.AddDirectionalLight(normals[trial + 2], 2, 1, 0.5f);
+            for (int c = 0; c < 3; ++c)
+                for (int i = 0; i < 9; ++i) ours[c, i] += (float)(random.NextDouble() - 0.5);
+            Vector4[] constants = Constants(ours);
+            double worst = ShaderVersusIrradiance(constants, ours, normals);
+            Vector4[] viaUnity = UnityPacked(UnitySphericalHarmonics.ToUnity(ours));
+            bool samePacking = true;
+            for (int k = 0; k < 7; ++k)
+                samePacking &= constants[k].x == viaUnity[k].x && constants[k].y == viaUnity[k].y &&
+                               constants[k].z == viaUnity[k].z && constants[k].w == viaUnity[k].w;
+            double roundTrip = MaxDifference(UnitySphericalHarmonics.FromUnity(UnitySphericalHarmonics.ToUnity(ours)), ours);
+            if (trial == 0 || worst >= 1e-5 || !samePacking || roundTrip >= 1e-6)
+                Check(worst < 1e-5 && samePacking && roundTrip < 1e-6, "ours -> constants: pi ShadeSH9 = tp_sh_eval_irradiance over " +
+                      normals.Length + " normals (worst " + worst + "), the same constants as Unity's packing, round trip " + roundTrip);
+        }
+        try
+        {
+            UnitySphericalHarmonics.ToShaderConstants(new ProbeSH(), new Vector4[6]);
+            Check(false, "6 constants refused");
+        }
+        catch (ArgumentException) { Check(true, "6 constants refused"); }
+    }
+
+    static void BakeAndLight(string scratch)
+    {
+        UnityEngine.Object.ResetStubScene();
+        var group = new GameObject("probes").AddComponent<LightProbeGroup>();
+        group.transform.position = new Vector3(10, 0, 0);
+        var local = new System.Collections.Generic.List<Vector3>();
+        for (int x = 0; x < 3; ++x)
+            for (int y = 0; y < 3; ++y)
+                for (int z = 0; z < 3; ++z) local.Add(new Vector3(x * 2, 0.5f + y, z * 2));
+        group.probePositions = local.ToArray();
+
+        var floor = new GameObject("floor");
+        var mesh = new Mesh();
+        mesh.vertices = new[] { new Vector3(-5, 0, -5), new Vector3(20, 0, -5), new Vector3(20, 0, 20), new Vector3(-5, 0, 20) };
+        mesh.triangles = new[] { 0, 2, 1, 0, 3, 2 };
+        floor.AddComponent<MeshFilter>().sharedMesh = mesh;
+        var floorMaterial = new UnityEngine.Material();
+        floorMaterial.color = new Color(0.5f, 0.5f, 0.5f);
+        floor.AddComponent<MeshRenderer>().sharedMaterial = floorMaterial;
+
+        var sun = new GameObject("sun").AddComponent<UnityEngine.Light>();
+        sun.type = UnityEngine.LightType.Directional;
+        sun.transform.forward = new Vector3(0, -1, 0);
+        sun.intensity = 1;
+        sun.shadows = LightShadows.Soft;
+        RenderSettings.ambientProbe = new UnitySH();
+        RenderSettings.ambientProbe.AddAmbientLight(new Color(0.1f, 0.1f, 0.1f));
+
+        Vector3[] positions = LightProbeBaker.ProbePositions();
+        Check(positions.Length == 27 && positions[0].Equals(new Vector3(10, 0.5f, 0)), "baker: LightProbeGroup probes in world space");
+        string asset = Path.Combine(scratch, "level_probes.bytes");
+        string plan = LightProbeBaker.Bake(asset, new BakeOptions { Rays = 64, Bounces = 1 });
+        Check(File.Exists(asset) && UnityEditor.AssetDatabase.Imported.Contains(asset), "baker: wrote and imported " + asset);
+        Check(plan.Contains("direct: 1") && UnityEditor.EditorUtility.Shown.Count > 0, "baker: plan '" + plan + "', progress shown");
+
+        UnityEditor.EditorUtility.CancelAt = 0.0f;
+        byte[] before = File.ReadAllBytes(asset);
+        try
+        {
+            LightProbeBaker.Bake(asset, new BakeOptions { Rays = 64, Bounces = 1 });
+            Check(false, "baker: Cancel in the progress bar stops the bake");
+        }
+        catch (OperationCanceledException)
+        {
+            byte[] after = File.ReadAllBytes(asset);
+            bool unchanged = after.Length == before.Length;
+            for (int i = 0; unchanged && i < after.Length; ++i) unchanged = after[i] == before[i];
+            Check(unchanged, "baker: Cancel stops the bake and leaves the asset as it was");
+        }
+        UnityEditor.EditorUtility.CancelAt = float.PositiveInfinity;
+
+        // TetProbeLighting on a renderer in the probes' cloud: its property block holds what the store interpolates.
+        var lit = new GameObject("character");
+        var renderer = lit.AddComponent<MeshRenderer>();
+        renderer.bounds = new Bounds { center = new Vector3(11.3f, 1.7f, 2.2f) };
+        var lighting = lit.AddComponent<TetProbeLighting>();
+        lighting.store = new TextAsset(File.ReadAllBytes(asset));
+        Invoke(lighting, "OnEnable");
+        Invoke(lighting, "Update");
+        Check(renderer.lightProbeUsage == UnityEngine.Rendering.LightProbeUsage.CustomProvided, "lighting: CustomProvided probes");
+        var block = new MaterialPropertyBlock();
+        renderer.GetPropertyBlock(block);
+        var pushed = new Vector4[7];
+        string[] names = { "unity_SHAr", "unity_SHAg", "unity_SHAb", "unity_SHBr", "unity_SHBg", "unity_SHBb", "unity_SHC" };
+        for (int k = 0; k < 7; ++k) pushed[k] = block.GetVectorArray(names[k])[0];
+        ProbeSH expected;
+        using (ProbeStore store = ProbeStore.Load(asset))
+        {
+            int hint = -1;
+            store.Interpolate(renderer.bounds.center, ref hint, out expected);
+        }
+        double worst = ShaderVersusIrradiance(pushed, expected, Normals(50, new System.Random(4)));
+        Check(worst < 1e-5, "lighting: the renderer's constants evaluate to the interpolated irradiance (" + worst + ")");
+        Vector3 up = UnityCG.ShadeSH9(pushed, new Vector3(0, 1, 0)), down = UnityCG.ShadeSH9(pushed, new Vector3(0, -1, 0));
+        Check(up.x > 0.9 && up.x > 3 * down.x && down.x > 0.05, "lighting: sunlit from above (" + up.x + "), floor and sky below (" +
+              down.x + ")");
+        renderer.bounds = new Bounds { center = new Vector3(12.5f, 2.1f, 1.1f) };
+        Invoke(lighting, "Update");
+        renderer.GetPropertyBlock(block);
+        Check(block.GetVectorArray("unity_SHAr")[0].w != pushed[0].w || block.GetVectorArray("unity_SHAr")[0].y != pushed[0].y,
+              "lighting: a moved renderer gets new SH the next frame");
+        Invoke(lighting, "OnDisable");
+    }
+
+    static void Invoke(object target, string method)
+    {
+        target.GetType().GetMethod(method, BindingFlags.Instance | BindingFlags.NonPublic | BindingFlags.Public).Invoke(target, null);
+    }
+
+    static int Main(string[] args)
+    {
+        string scratch = args.Length > 0 ? args[0] : Path.GetTempPath();
+        Directory.CreateDirectory(scratch);
+        foreach (Action test in new Action[] { Conversions, () => BakeAndLight(scratch) })
+        {
+            try
+            {
+                test();
+            }
+            catch (Exception e)
+            {
+                ++failed;
+                Console.WriteLine("FAIL: unexpected " + e.GetType().Name + ": " + e.Message + "\n" + e.StackTrace);
+            }
+        }
+        Console.WriteLine(passed + " passed, " + failed + " failed");
+        return failed == 0 ? 0 : 1;
+    }
+}

@@ -1,0 +1,41 @@
+// The version check refuses a library of another major.minor with a clear message, before any other call.
+using System;
+using TetProbe;
+
+static class VersionTests
+{
+    public static void Run()
+    {
+        Func<uint> real = NativeProxy.VersionSource;
+        try
+        {
+            NativeProxy.VersionSource = () => (0u << 16) | (4u << 8) | 2u;
+            NativeProxy.ResetVersionCheck();
+            Tests.Throws<TetProbeException>(() => ProbeStore.Build(new[] { new Vector3(0, 0, 0) }, null), "0.4.2 library refused by Build",
+                e => e.Status == TetProbeStatus.Version && e.Message.Contains("0.4.2") && e.Message.Contains("0.5"));
+            Tests.Throws<TetProbeException>(() => ProbeStore.Load(new byte[16]), "refused by Load",
+                                            e => e.Status == TetProbeStatus.Version);
+            Tests.Throws<TetProbeException>(() => new Scene(), "refused by Scene", e => e.Status == TetProbeStatus.Version);
+            var sh = new SphericalHarmonicsL2();
+            Tests.Throws<TetProbeException>(() => sh.AddAmbientLight(1, 1, 1), "refused by the SH helpers",
+                                            e => e.Status == TetProbeStatus.Version);
+            Tests.Throws<TetProbeException>(() => ShadowCasterVolume.TestSphere(new float[0], new Vector3(0, 0, 0), 1),
+                                            "refused by the volumes", e => e.Status == TetProbeStatus.Version);
+            NativeProxy.VersionSource = () => (1u << 16) | (5u << 8);
+            Tests.Throws<TetProbeException>(() => new Scene(), "another major refused", e => e.Status == TetProbeStatus.Version);
+
+            NativeProxy.VersionSource = () => { throw new DllNotFoundException("libtetprobe.so: cannot open shared object file"); };
+            Tests.Throws<DllNotFoundException>(() => new Scene(), "a missing library says which plugin to put where",
+                                               e => e.Message.Contains("'tetprobe'") && e.InnerException != null);
+
+            NativeProxy.VersionSource = () => (0u << 16) | (5u << 8) | 9u;
+            using (ProbeStore store = ProbeStore.Build(new[] { new Vector3(0, 0, 0) }, null))
+                Tests.Check(store.Info.Probes == 1, "another patch of 0.5 is accepted");
+        }
+        finally
+        {
+            NativeProxy.VersionSource = real;
+            NativeProxy.ResetVersionCheck();
+        }
+    }
+}
