@@ -167,10 +167,28 @@ void prepare_method_scene(const std::string& path, const MethodSettings& setting
     const float* listed;
     size_t listed_count;
     check(tp_scene_probes(s.scene, &listed, &listed_count), "tp_scene_probes");
-    if (listed_count == 0)
-        throw std::runtime_error(path + ": the scene lists no probes (the methods benchmark compares on the scene's own probes)");
     s.probe_source = "scene file";
     s.probes.assign(listed, listed + 3 * listed_count);
+    if (listed_count == 0) {
+        // No probes in the file: a uniform 6 x 3 x 6 lattice over the middle 80% of the meshes' bounds.
+        const tetprobe::Scene scene = tetprobe::load_scene_file(path);
+        if (scene.meshes().empty()) throw std::runtime_error(path + ": no probes and no meshes to place them in");
+        float lo[3], hi[3];
+        for (int k = 0; k < 3; ++k) lo[k] = INFINITY, hi[k] = -INFINITY;
+        for (const tetprobe::Mesh& mesh : scene.meshes())
+            for (int k = 0; k < 3; ++k)
+                lo[k] = std::min(lo[k], mesh.bounds_min[k]), hi[k] = std::max(hi[k], mesh.bounds_max[k]);
+        const int counts[3] = {6, 3, 6};
+        for (int z = 0; z < counts[2]; ++z)
+            for (int y = 0; y < counts[1]; ++y)
+                for (int x = 0; x < counts[0]; ++x) {
+                    const int i[3] = {x, y, z};
+                    for (int k = 0; k < 3; ++k)
+                        s.probes.push_back(lo[k] + (hi[k] - lo[k]) * (0.1f + 0.8f * float(i[k]) / float(counts[k] - 1)));
+                }
+        listed_count = s.probes.size() / 3;
+        s.probe_source = "uniform";
+    }
     for (int k = 0; k < 3; ++k) s.probe_min[k] = s.probe_max[k] = s.probes[k];
     for (size_t p = 0; p < listed_count; ++p)
         for (int k = 0; k < 3; ++k)
