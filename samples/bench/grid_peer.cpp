@@ -29,6 +29,19 @@ void grid_dims_for_count(const float lo[3], const float hi[3], size_t max_probes
         (dims_at(mid, dims) <= max_probes ? coarse : fine) = mid;
     }
     dims_at(coarse, out_dims);
+    // Then spend what is left: refine the axis of the widest spacing while the count still fits.
+    for (;;) {
+        int widest = -1;
+        double widest_spacing = 0;
+        size_t count = size_t(out_dims[0]) * out_dims[1] * out_dims[2];
+        for (int k = 0; k < 3; ++k) {
+            if (extent[k] <= 1e-6 * diagonal || count / size_t(out_dims[k]) * size_t(out_dims[k] + 1) > max_probes) continue;
+            const double spacing = out_dims[k] > 1 ? extent[k] / (out_dims[k] - 1) : INFINITY;
+            if (spacing > widest_spacing) widest = k, widest_spacing = spacing;
+        }
+        if (widest < 0) return;
+        ++out_dims[widest];
+    }
 }
 
 GridPeer::GridPeer(const float lo[3], const float hi[3], const int dims[3]) {

@@ -9,8 +9,9 @@
 
 namespace bench {
 
-// Probes per axis for a grid over [lo, hi] holding at most max_probes: the same spacing on every axis,
-// as fine as the count allows; an axis of zero extent gets one probe.
+// Probes per axis for a grid over [lo, hi] holding at most max_probes: the finest spacing common to every
+// axis, then the axis of the widest spacing refined while the count still fits; an axis of zero extent
+// gets one probe.
 void grid_dims_for_count(const float lo[3], const float hi[3], size_t max_probes, int out_dims[3]);
 
 class GridPeer {

@@ -83,4 +83,9 @@ TEST_CASE("grid sizing stays within the budget and grows with it", "[grid_peer]"
         previous = count;
     }
     REQUIRE(previous > 500);  // a budget of 1000 is mostly used
+    // The common spacing alone fits 8 x 2 x 3 = 48 of 94 here; refining the widest axes uses most of it.
+    int dims[3];
+    bench::grid_dims_for_count(lo, hi, 94, dims);
+    REQUIRE(size_t(dims[0]) * dims[1] * dims[2] >= 80);
+    REQUIRE(size_t(dims[0]) * dims[1] * dims[2] <= 94);
 }
