@@ -1,7 +1,9 @@
-// tetprobe_bench [store|bake|locate|probes|all] [--out DIR] [--quick]: the store benchmark (this
-// folder's bench_store.cpp), the bake benchmark (bench_bake.cpp), and the report's locate and
-// probe-count parts (bench_locate.cpp, bench_probe_count.cpp), which write JSON into DIR for
-// samples/bench/report.py. Default: all.
+// tetprobe_bench [store|bake|locate|probes|all|methods|precision] [--out DIR] [--quick]: the store
+// benchmark (this folder's bench_store.cpp) and the bake benchmark (bench_bake.cpp), and the parts of
+// the report that write JSON into DIR for samples/bench/report.py: methods and precision
+// (bench_methods.cpp, bench_precision.cpp), locate and probes (bench_locate.cpp,
+// bench_probe_count.cpp); bake writes bake.json too when given --out. Default: all (store, bake,
+// locate, probes).
 #include "bench.h"
 
 #include <cstdio>
@@ -9,13 +11,16 @@
 
 int main(int argc, char** argv) {
     const char* which = argc > 1 ? argv[1] : "all";
+    if (!std::strcmp(which, "methods")) return run_methods_bench(argc, argv);
+    if (!std::strcmp(which, "precision")) return run_precision_bench(argc, argv);
     const bool all = !std::strcmp(which, "all");
     const bool store = all || !std::strcmp(which, "store");
     const bool bake = all || !std::strcmp(which, "bake");
     const bool locate = all || !std::strcmp(which, "locate");
     const bool probes = all || !std::strcmp(which, "probes");
     if (!store && !bake && !locate && !probes) {
-        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all] [--out DIR] [--quick]\n");
+        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all|methods|precision] [--out DIR] "
+                             "[--quick]\n");
         return 2;
     }
     int status = 0;

@@ -1,0 +1,108 @@
+#include "grid_peer.h"
+
+#include "core/half.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace bench {
+
+void grid_dims_for_count(const float lo[3], const float hi[3], size_t max_probes, int out_dims[3]) {
+    double extent[3], diagonal = 0;
+    for (int k = 0; k < 3; ++k) extent[k] = double(hi[k]) - lo[k], diagonal += extent[k] * extent[k];
+    diagonal = std::sqrt(diagonal);
+    auto dims_at = [&](double spacing, int dims[3]) {
+        size_t count = 1;
+        for (int k = 0; k < 3; ++k) {
+            dims[k] = extent[k] <= 1e-6 * diagonal ? 1 : 1 + int(std::floor(extent[k] / spacing));
+            count *= size_t(dims[k]);
+        }
+        return count;
+    };
+    // The count falls as the spacing grows: bisect for the finest spacing that fits.
+    double coarse = 2 * diagonal + 1, fine = diagonal * 1e-6 + 1e-9;
+    int dims[3];
+    if (dims_at(coarse, dims) > max_probes) throw std::invalid_argument("grid_dims_for_count: max_probes too small");
+    for (int step = 0; step < 200; ++step) {
+        const double mid = 0.5 * (coarse + fine);
+        (dims_at(mid, dims) <= max_probes ? coarse : fine) = mid;
+    }
+    dims_at(coarse, out_dims);
+    // Then spend what is left: refine the axis of the widest spacing while the count still fits.
+    for (;;) {
+        int widest = -1;
+        double widest_spacing = 0;
+        size_t count = size_t(out_dims[0]) * out_dims[1] * out_dims[2];
+        for (int k = 0; k < 3; ++k) {
+            if (extent[k] <= 1e-6 * diagonal || count / size_t(out_dims[k]) * size_t(out_dims[k] + 1) > max_probes) continue;
+            const double spacing = out_dims[k] > 1 ? extent[k] / (out_dims[k] - 1) : INFINITY;
+            if (spacing > widest_spacing) widest = k, widest_spacing = spacing;
+        }
+        if (widest < 0) return;
+        ++out_dims[widest];
+    }
+}
+
+GridPeer::GridPeer(const float lo[3], const float hi[3], const int dims[3]) {
+    for (int k = 0; k < 3; ++k) {
+        if (dims[k] < 1) throw std::invalid_argument("GridPeer: dims must be >= 1");
+        lo_[k] = lo[k];
+        dims_[k] = dims[k];
+        cell_[k] = dims[k] > 1 ? (hi[k] - lo[k]) / float(dims[k] - 1) : 0.0f;
+    }
+}
+
+std::vector<float> GridPeer::positions() const {
+    std::vector<float> p;
+    p.reserve(3 * probe_count());
+    for (int z = 0; z < dims_[2]; ++z)
+        for (int y = 0; y < dims_[1]; ++y)
+            for (int x = 0; x < dims_[0]; ++x) {
+                const int i[3] = {x, y, z};
+                for (int k = 0; k < 3; ++k) p.push_back(lo_[k] + cell_[k] * float(i[k]));
+            }
+    return p;
+}
+
+void GridPeer::set_sh(const std::vector<float>& sh) {
+    if (sh.size() != 27 * probe_count()) throw std::invalid_argument("GridPeer::set_sh: 27 floats per probe");
+    halves_.resize(sh.size());
+    for (size_t i = 0; i < sh.size(); ++i) halves_[i] = tetprobe::float_to_half(sh[i]);
+}
+
+void GridPeer::interpolate(const float position[3], float out_sh[27]) const {
+    int base[3];
+    float frac[3];
+    for (int k = 0; k < 3; ++k) {
+        if (dims_[k] == 1) {
+            base[k] = 0, frac[k] = 0;
+            continue;
+        }
+        const float u = std::min(std::max((position[k] - lo_[k]) / cell_[k], 0.0f), float(dims_[k] - 1));
+        base[k] = std::min(int(u), dims_[k] - 2);
+        frac[k] = u - float(base[k]);
+    }
+    // The 8 corners as two blends of 4 (core's half blend); a corner across an axis of one probe has weight 0.
+    const uint16_t* corners[8];
+    float weights[8];
+    for (int corner = 0; corner < 8; ++corner) {
+        float weight = 1;
+        size_t index = 0, stride = 1;
+        for (int k = 0; k < 3; ++k) {
+            const int up = (corner >> k) & 1;
+            if (up && dims_[k] == 1) weight = 0;
+            weight *= up ? frac[k] : 1 - frac[k];
+            index += stride * size_t(base[k] + (dims_[k] > 1 ? up : 0));
+            stride *= size_t(dims_[k]);
+        }
+        corners[corner] = &halves_[27 * index];
+        weights[corner] = weight;
+    }
+    float upper[27];
+    tetprobe::blend_sh_halves(corners, weights, out_sh);
+    tetprobe::blend_sh_halves(corners + 4, weights + 4, upper);
+    for (int i = 0; i < 27; ++i) out_sh[i] += upper[i];
+}
+
+}  // namespace bench

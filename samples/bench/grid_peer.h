@@ -1,0 +1,41 @@
+// Peer of the benchmark (never linked into a tetprobe library): a uniform grid of probes with trilinear
+// interpolation, the light-probe-proxy-volume / irradiance-volume approach. SH are kept as 27 halves per
+// probe, as a shipping grid would store them.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace bench {
+
+// Probes per axis for a grid over [lo, hi] holding at most max_probes: the finest spacing common to every
+// axis, then the axis of the widest spacing refined while the count still fits; an axis of zero extent
+// gets one probe.
+void grid_dims_for_count(const float lo[3], const float hi[3], size_t max_probes, int out_dims[3]);
+
+class GridPeer {
+public:
+    GridPeer(const float lo[3], const float hi[3], const int dims[3]);
+
+    size_t probe_count() const { return size_t(dims_[0]) * dims_[1] * dims_[2]; }
+    const int* dims() const { return dims_; }
+    // Positions of the grid probes, x fastest, then y, then z (the order set_sh expects).
+    std::vector<float> positions() const;
+    // 27 floats per probe in positions() order, stored as halves.
+    void set_sh(const std::vector<float>& sh);
+    // Trilinear blend of the 8 surrounding probes; a point outside the grid is clamped onto it.
+    void interpolate(const float position[3], float out_sh[27]) const;
+    // Run-time data: 27 halves per probe plus the header (origin, cell size, dims).
+    size_t bytes() const { return halves_.size() * sizeof(uint16_t) + kHeaderBytes; }
+
+    static constexpr size_t kHeaderBytes = 3 * sizeof(float) + 3 * sizeof(float) + 3 * sizeof(int32_t);
+
+private:
+    float lo_[3];
+    float cell_[3];  // spacing per axis (0 on an axis with one probe)
+    int dims_[3];
+    std::vector<uint16_t> halves_;
+};
+
+}  // namespace bench
