@@ -73,16 +73,20 @@ class Plotter:
         cols = min(3, len(images))
         rows = (len(images) + cols - 1) // cols
         aspect = (s["z"][1] - s["z"][0]) / max(s["x"][1] - s["x"][0], 1e-9)
+        # A long thin slice (a race track) is stretched across to stay readable, and says so.
+        stretched = not 0.25 <= aspect <= 4.0
+        aspect = min(max(aspect, 0.25), 4.0)
         fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, (4.2 * aspect + 1.2) * rows), squeeze=False,
                                  constrained_layout=True)
         extent = [s["x"][0], s["x"][1], s["z"][0], s["z"][1]]
         shown = None
         for index, (ax, (label, _), a) in enumerate(zip(axes.flat, images, arrays)):
-            shown = ax.imshow(a, origin="lower", extent=extent, vmin=lo, vmax=hi, cmap="inferno", aspect="equal")
+            shown = ax.imshow(a, origin="lower", extent=extent, vmin=lo, vmax=hi, cmap="inferno",
+                              aspect="auto" if stretched else "equal")
             ax.set_title(textwrap.fill(label, 34), fontsize=9)
             ax.set_xlabel("x (m)")
             if index % cols == 0:
-                ax.set_ylabel("z (m)")
+                ax.set_ylabel("z (m, stretched)" if stretched else "z (m)")
         for ax in list(axes.flat)[len(images):]:
             ax.axis("off")
         bar = fig.colorbar(shown, ax=axes.ravel().tolist(), shrink=0.8)
@@ -155,7 +159,7 @@ class Plotter:
         left.set_xlabel("probe spacing along x (m), halved per level")
         left.set_ylabel("RMS irradiance error (relative)")
         left.set_title("%s: error as the spacing halves" % os.path.basename(str(doc.get("scene"))))
-        left.legend(fontsize=7)
+        left.legend(fontsize=7, loc="lower left")
         left.grid(True, which="both", alpha=0.3)
         probes = [l["probes"] for l in levels]
         right.plot(probes, [l["fast_bytes"] for l in levels], marker="o", label="fast layout")
