@@ -3,7 +3,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 
-.PHONY: deps build demo test test-fast sanitize tsan fuzz fuzz-short cross bench clean
+.PHONY: deps build demo test test-fast sanitize tsan fuzz fuzz-short cross bench bench-docs clean
 
 deps:
 	bash .ci/install-deps.sh
@@ -55,8 +55,26 @@ fuzz: fuzz-build
 cross: deps
 	bash .ci/cross.sh $(BUILD) $(JOBS)
 
+# The benchmark report (issue 8): every part of tetprobe_bench writes its JSON (the store part its
+# markdown) into $(BENCH_OUT), scipy times find_simplex on the locate part's points, and report.py
+# writes report.md and the PNG plots there. A part that fails is named "not run" in the report, so the
+# old results of a part are removed first. `make bench-docs` copies the report into docs/bench/.
+BENCH_OUT ?= $(BUILD)/bench
+BENCH_PARTS ?= methods precision locate bake probes
 bench: build
-	$(BUILD)/samples/tetprobe_bench
+	rm -rf $(BENCH_OUT) && mkdir -p $(BENCH_OUT)
+	$(BUILD)/samples/tetprobe_bench store > $(BENCH_OUT)/store.md.tmp && mv $(BENCH_OUT)/store.md.tmp $(BENCH_OUT)/store.md \
+	  || echo "tetprobe_bench store failed: the report says so"
+	for part in $(BENCH_PARTS); do \
+	  $(BUILD)/samples/tetprobe_bench $$part --out $(BENCH_OUT) > $(BENCH_OUT)/$$part.txt \
+	    || echo "tetprobe_bench $$part failed: the report says so"; \
+	done
+	/usr/bin/python3 samples/bench/scipy_locate.py $(BENCH_OUT)
+	/usr/bin/python3 samples/bench/report.py $(BENCH_OUT)
+
+bench-docs:
+	rm -rf docs/bench && mkdir -p docs/bench
+	cp $(BENCH_OUT)/report.md $(BENCH_OUT)/*.png docs/bench/
 
 clean:
 	rm -rf $(BUILD) $(BUILD)-asan $(BUILD)-tsan $(BUILD)-fuzz

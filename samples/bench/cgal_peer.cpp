@@ -37,8 +37,8 @@ struct CgalPeer::Impl {
     const uint16_t* sh = nullptr;
     size_t sh_stride = 0;
 
-    // Locate with hint, weights in double (ratios of signed volumes), blend. False in an infinite cell.
-    bool query(const float* position, Cell* hint, float out[27]) const {
+    // Locate with hint, weights in double (ratios of signed volumes). False in an infinite cell.
+    bool locate(const float* position, Cell* hint, float w[4]) const {
         const Point p(position[0], position[1], position[2]);
         const Cell c = triangulation.locate(p, *hint);
         *hint = c;
@@ -48,8 +48,18 @@ struct CgalPeer::Impl {
         const Point& d = c->vertex(2)->point();
         const Point& e = c->vertex(3)->point();
         const double volume = det3(a, b, d, e);
-        const float w[4] = {float(det3(p, b, d, e) / volume), float(det3(a, p, d, e) / volume),
-                            float(det3(a, b, p, e) / volume), float(det3(a, b, d, p) / volume)};
+        w[0] = float(det3(p, b, d, e) / volume);
+        w[1] = float(det3(a, p, d, e) / volume);
+        w[2] = float(det3(a, b, p, e) / volume);
+        w[3] = float(det3(a, b, d, p) / volume);
+        return true;
+    }
+
+    // Locate, weights, blend. False in an infinite cell.
+    bool query(const float* position, Cell* hint, float out[27]) const {
+        float w[4];
+        if (!locate(position, hint, w)) return false;
+        const Cell c = *hint;
         const uint16_t* s[4] = {sh + sh_stride * c->vertex(0)->info(), sh + sh_stride * c->vertex(1)->info(),
                                 sh + sh_stride * c->vertex(2)->info(), sh + sh_stride * c->vertex(3)->info()};
         tetprobe::blend_sh_halves(s, w, out);
@@ -95,6 +105,37 @@ double CgalPeer::run(const ObjectPaths& paths, float* sink, size_t* outside) con
     return seconds;
 }
 
+double CgalPeer::locate_paths(const ObjectPaths& paths, float* sink) const {
+    std::vector<Cell> start(paths.objects);
+    float w[4], acc = 0;
+    for (size_t o = 0; o < paths.objects; ++o) impl_->locate(paths.at(o, 0), &start[o], w);
+    const Clock::time_point t0 = Clock::now();
+    for (size_t o = 0; o < paths.objects; ++o) {
+        Cell hint = start[o];
+        for (size_t f = 1; f < paths.frames; ++f) {
+            impl_->locate(paths.at(o, f), &hint, w);
+            acc += w[0];
+        }
+    }
+    const double seconds = seconds_since(t0);
+    *sink += acc;
+    return seconds;
+}
+
+double CgalPeer::locate_points(const float* points, size_t count, bool carry_hint, float* sink) const {
+    float w[4], acc = 0;
+    Cell hint;
+    const Clock::time_point t0 = Clock::now();
+    for (size_t i = 0; i < count; ++i) {
+        if (!carry_hint) hint = Cell();
+        impl_->locate(points + 3 * i, &hint, w);
+        acc += w[0];
+    }
+    const double seconds = seconds_since(t0);
+    *sink += acc;
+    return seconds;
+}
+
 }  // namespace bench
 
 #else  // without CGAL: the peer is skipped
@@ -113,6 +154,8 @@ std::unique_ptr<CgalPeer> CgalPeer::build(const float*, const uint32_t*, size_t,
 }
 
 double CgalPeer::run(const ObjectPaths&, float*, size_t*) const { return 0.0; }
+double CgalPeer::locate_paths(const ObjectPaths&, float*) const { return 0.0; }
+double CgalPeer::locate_points(const float*, size_t, bool, float*) const { return 0.0; }
 
 }  // namespace bench
 

@@ -28,6 +28,12 @@ public:
     // checksum. *outside counts queries that landed in an infinite cell (none expected).
     double run(const ObjectPaths& paths, float* sink, size_t* outside = nullptr) const;
 
+    // Locate + weights in double, no blend (the locate benchmark): over the objects' paths, each object
+    // with its own hint (frame 0 untimed), or over points with the hint of the previous point
+    // (carry_hint) or none (CGAL then starts from a cell of its own choosing). Returns seconds.
+    double locate_paths(const ObjectPaths& paths, float* sink) const;
+    double locate_points(const float* points, size_t count, bool carry_hint, float* sink) const;
+
 private:
     struct Impl;
     explicit CgalPeer(std::unique_ptr<Impl> impl);

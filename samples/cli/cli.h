@@ -63,6 +63,23 @@ Image colour_map(const std::vector<float>& values, int width, int height, float 
 void mark(Image& image, int x, int y, const unsigned char colour[3], int radius);
 void write_png(const std::string& path, const Image& image);
 
+// Text in a 5x7 bitmap font (bitmap_font.cpp), each font pixel a scale x scale square; (x, y) is the
+// top left corner.
+constexpr int kGlyphWidth = 5, kGlyphHeight = 7;
+int text_width(const std::string& text, int scale);
+void draw_text(Image& image, int x, int y, const std::string& text, int scale, const unsigned char colour[3]);
+
+// World ranges of a slice picture: its columns span x, its rows z (row 0 at z_lo, at the top).
+struct SliceAxes {
+    float x_lo, x_hi, z_lo, z_hi;
+};
+
+// Panels of one size side by side on a white canvas (figure.cpp), each with its title, ticks in metres
+// and the labels "x (m)" and "z (m)", then a colour bar of colour_map's ramp over [value_lo, value_hi]
+// with ticks and value_label: a picture that says what its colours and distances mean.
+Image framed_figure(const std::vector<Image>& panels, const std::vector<std::string>& titles, const SliceAxes& axes,
+                    float value_lo, float value_hi, const std::string& value_label);
+
 // Progress bar on stderr; a tp_progress_fn (user = ProgressBar*).
 struct ProgressBar {
     std::string label;

@@ -114,25 +114,6 @@ void mark_probes(Image& image, int x_offset, int width, int height, const float 
     }
 }
 
-// Two panels side by side on one colour scale: left analytic, right interpolated.
-Image side_by_side(const std::vector<float>& left, const std::vector<float>& right, int width, int height) {
-    const int gap = 8;
-    std::vector<float> both(size_t(2 * width + gap) * height, -1e30f);
-    float lo = 1e30f, hi = -1e30f;
-    for (float v : left) lo = std::min(lo, v), hi = std::max(hi, v);
-    for (int row = 0; row < height; ++row) {
-        std::copy(&left[size_t(row) * width], &left[size_t(row) * width] + width, &both[size_t(row) * (2 * width + gap)]);
-        std::copy(&right[size_t(row) * width], &right[size_t(row) * width] + width,
-                  &both[size_t(row) * (2 * width + gap) + width + gap]);
-    }
-    Image image = colour_map(both, 2 * width + gap, height, lo, hi);
-    for (int row = 0; row < height; ++row)
-        for (int column = width; column < width + gap; ++column)
-            std::fill(&image.rgb[3 * (size_t(row) * image.width + column)],
-                      &image.rgb[3 * (size_t(row) * image.width + column)] + 3, 255);
-    return image;
-}
-
 void print_row(const char* name, const std::string& value) { std::printf("| %-38s | %22s |\n", name, value.c_str()); }
 
 std::string format(const char* pattern, double value) {
@@ -219,8 +200,13 @@ void demo_analytic_field(const fs::path& out_dir) {
         check(tp_store_interpolate(store.get(), p, &scan_hint, s), "tp_store_interpolate");
         return irradiance_up(s);
     });
-    Image image = side_by_side(analytic, interpolated, size, size);
-    mark_probes(image, size + 8, size, size, box, y, 0.4f, positions);
+    // One colour scale, the analytic field's range, for both panels.
+    float lo = 1e30f, hi = -1e30f;
+    for (float v : analytic) lo = std::min(lo, v), hi = std::max(hi, v);
+    Image right = colour_map(interpolated, size, size, lo, hi);
+    mark_probes(right, 0, size, size, box, y, 0.4f, positions);
+    const Image image = framed_figure({colour_map(analytic, size, size, lo, hi), right}, {"analytic", "interpolated"},
+                                      {box[0], box[1], box[2], box[3]}, lo, hi, "irradiance");
     const fs::path png = out_dir / "analytic_irradiance.png", blob = out_dir / "analytic.tpb";
     write_png(png.string(), image);
     check(tp_store_save_file(store.get(), blob.string().c_str()), "saving the store");
@@ -306,8 +292,10 @@ void demo_baked_scene(const fs::path& scene_path, const Arguments& a, const fs::
     });
     float vmax = 0;
     for (float v : values) vmax = std::max(vmax, v);
-    Image image = colour_map(values, width, height, 0.0f, vmax);
-    mark_probes(image, 0, width, height, box, y, 0.25f * (hi[1] - lo[1]) + 1e-3f, baked.positions);
+    Image slice_image = colour_map(values, width, height, 0.0f, vmax);
+    mark_probes(slice_image, 0, width, height, box, y, 0.25f * (hi[1] - lo[1]) + 1e-3f, baked.positions);
+    const Image image = framed_figure({slice_image}, {"y = " + format("%.2f", y)}, {box[0], box[1], box[2], box[3]},
+                                      0.0f, vmax, "irradiance");
     const std::string stem = scene_path.stem().string();
     const fs::path png = out_dir / (stem + "_irradiance.png"), blob = out_dir / (stem + ".tpb");
     write_png(png.string(), image);

@@ -108,6 +108,27 @@ def test_demo_writes_its_pictures_and_stores(tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     assert Store.load(str(out / "analytic.tpb")).info()["probes"] > 100
     assert not [p for p in out.iterdir() if ".tmp" in p.name]
+    for name in ("analytic_irradiance.png", "two_rooms_irradiance.png"):
+        _assert_framed_with_colour_bar(out / name)
+
+
+def _assert_framed_with_colour_bar(path):
+    """The picture has a white frame with black text (ticks, labels) and, on the right, a colour bar
+    running from the ramp's top colour (near white) down to its bottom colour (dark blue)."""
+    image = pytest.importorskip("matplotlib.image").imread(str(path))[:, :, :3]
+    height, width = image.shape[:2]
+    assert (image[0, 0] == 1).all() and (image[-1, -1] == 1).all()
+    bottom_margin = image[height - 30:]
+    assert (bottom_margin.sum(axis=2) == 0).any(), "no black text under the panels"
+    # The bar is the rightmost column holding the ramp's darkest colour (0.02, 0.02, 0.15) low down.
+    dark = np.abs(image - np.array([0.02, 0.02, 0.15])).max(axis=2) < 0.02
+    rows, columns = np.nonzero(dark)
+    column = columns.max()
+    bar = image[:, column]
+    coloured = np.nonzero((np.abs(bar - 1).max(axis=1) > 0.01) & (bar.max(axis=1) > 0))[0]  # not frame or text
+    top, bottom = bar[coloured[0]], bar[coloured[-1]]
+    assert top.min() > 0.8, top
+    assert np.abs(bottom - np.array([0.02, 0.02, 0.15])).max() < 0.02, bottom
 
 
 SCENES = os.path.join(os.path.dirname(__file__), "..", "..", "samples", "scenes")

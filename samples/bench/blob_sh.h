@@ -1,0 +1,22 @@
+// What the blend-only floor and the peers read of a fast store's blob: its SH section (IEEE halves)
+// and the input -> stored probe remap, so that every method blends the very same coefficients.
+#pragma once
+
+#include "capi/tetprobe.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace bench {
+
+struct BlobSh {
+    const uint16_t* sh = nullptr;  // valid while the store lives
+    size_t stride = 0;             // halves per probe
+    std::vector<uint32_t> input_remap;
+};
+
+// False if the store's blob is not the format-3 layout this benchmark reads.
+bool read_blob_sh(const tp_store* store, BlobSh* out);
+
+}  // namespace bench

@@ -1,0 +1,174 @@
+"""The report's plots (matplotlib, Agg backend), one method per picture; report.py decides where they go.
+
+Each drawing method takes the part's JSON (or one scene of it), writes DIR/<name>.png and returns
+its file name; Plotter.draw turns a missing matplotlib or missing data into a reason instead.
+"""
+import os
+import re
+import textwrap
+
+
+def _slug(text):
+    return re.sub(r"[^a-z0-9]+", "_", str(text).lower()).strip("_") or "scene"
+
+
+class Plotter:
+    def __init__(self, directory):
+        self.directory = directory
+        self.written = []
+        try:
+            import matplotlib
+            matplotlib.use("Agg")
+            import matplotlib.pyplot as plt
+        except ImportError as e:
+            self.available, self.why, self.plt = False, "matplotlib not installed (%s)" % e, None
+            return
+        self.available, self.why, self.plt = True, "", plt
+
+    def draw(self, method, *args):
+        """Returns (file name, '') or (None, why not)."""
+        if not self.available:
+            return None, self.why
+        try:
+            fig, name = getattr(self, method)(*args)
+        except (KeyError, TypeError, ValueError, IndexError) as e:
+            return None, "the data for it is incomplete (%s: %s)" % (type(e).__name__, e)
+        path = os.path.join(self.directory, name)
+        fig.savefig(path, dpi=110, bbox_inches="tight")
+        self.plt.close(fig)
+        self.written.append(name)
+        return name, ""
+
+    # ---- part 1
+
+    def methods_error_vs_time(self, scene):
+        plt = self.plt
+        fig, ax = plt.subplots(figsize=(6.4, 4.4))
+        markers = "osD^vP*Xh<>"
+        for i, m in enumerate(scene["methods"]):
+            if m.get("ns_per_query") is None or m.get("rms_error") is None:
+                continue
+            ax.scatter(m["ns_per_query"], m["rms_error"], s=48, marker=markers[i % len(markers)],
+                       label=m.get("label", m["id"]), zorder=3)
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("ns per query (single queries along the path)")
+        ax.set_ylabel("RMS irradiance error (relative)")
+        ax.set_title("%s: error vs time per query" % scene["name"])
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
+        return fig, "methods_error_vs_time_%s.png" % _slug(scene["name"])
+
+    def slices(self, scene):
+        plt = self.plt
+        import numpy as np
+        s = scene["slice"]
+        nx, nz = s["nx"], s["nz"]
+        images = [("reference (baked at each point)", s["reference"])]
+        labels = {m["id"]: m.get("label", m["id"]) for m in scene.get("methods", [])}
+        images += [(labels.get(k, k), v) for k, v in s["methods"].items()]
+        arrays = [np.asarray(v, dtype=float).reshape(nz, nx) for _, v in images]
+        lo = min(float(np.nanmin(a)) for a in arrays)
+        hi = max(float(np.nanmax(a)) for a in arrays)
+        cols = min(3, len(images))
+        rows = (len(images) + cols - 1) // cols
+        aspect = (s["z"][1] - s["z"][0]) / max(s["x"][1] - s["x"][0], 1e-9)
+        # A long thin slice (a race track) is stretched across to stay readable, and says so.
+        stretched = not 0.25 <= aspect <= 4.0
+        aspect = min(max(aspect, 0.25), 4.0)
+        fig, axes = plt.subplots(rows, cols, figsize=(4.2 * cols, (4.2 * aspect + 1.2) * rows), squeeze=False,
+                                 constrained_layout=True)
+        extent = [s["x"][0], s["x"][1], s["z"][0], s["z"][1]]
+        shown = None
+        for index, (ax, (label, _), a) in enumerate(zip(axes.flat, images, arrays)):
+            shown = ax.imshow(a, origin="lower", extent=extent, vmin=lo, vmax=hi, cmap="inferno",
+                              aspect="auto" if stretched else "equal")
+            ax.set_title(textwrap.fill(label, 34), fontsize=9)
+            ax.set_xlabel("x (m)")
+            if index % cols == 0:
+                ax.set_ylabel("z (m, stretched)" if stretched else "z (m)")
+        for ax in list(axes.flat)[len(images):]:
+            ax.axis("off")
+        bar = fig.colorbar(shown, ax=axes.ravel().tolist(), shrink=0.8)
+        bar.set_label("irradiance / scene mean (normal %s)" % (s.get("normal"),))
+        fig.suptitle("%s: slice at %s = %.2f m" % (scene["name"], s.get("axis", "y"), s["height"]))
+        return fig, "slices_%s.png" % _slug(scene["name"])
+
+    def popping(self, scene):
+        plt = self.plt
+        fig, ax = plt.subplots(figsize=(7.2, 3.8))
+        path = scene["path"]
+        ax.plot(path["reference_trace"], color="black", linewidth=2.2, label="reference", zorder=5)
+        for m in scene["methods"]:
+            if m.get("trace"):
+                ax.plot(m["trace"], linewidth=1.1, label=m.get("label", m["id"]))
+        ax.set_xlabel("frame along the path")
+        ax.set_ylabel("irradiance / scene mean (normal %s)" % (path.get("normal"),))
+        ax.set_title("%s: irradiance along a moving object's path (popping)" % scene["name"])
+        ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.16))
+        ax.grid(True, alpha=0.3)
+        return fig, "popping_%s.png" % _slug(scene["name"])
+
+    # ---- part 4
+
+    def bake_error_vs_time(self, doc):
+        plt = self.plt
+        scenes = doc["scenes"]
+        fig, axes = plt.subplots(1, len(scenes), figsize=(5.6 * len(scenes), 4.2), squeeze=False)
+        for ax, scene in zip(axes[0], scenes):
+            curves = {}
+            for r in scene["rows"]:
+                curves.setdefault((r["bounces"], r.get("emitter_sampling")), []).append(r)
+            colours = {b: "C%d" % i for i, b in enumerate(sorted({b for b, _ in curves}))}
+            for (bounces, sampled), rows in sorted(curves.items(), key=lambda kv: (kv[0][0], str(kv[0][1]))):
+                rows.sort(key=lambda r: r["rays"])
+                label = "%d bounces" % bounces + ("" if sampled is None else
+                                                  ", emitter sampling %s" % ("on" if sampled else "off"))
+                ax.plot([max(r["seconds"], 1e-4) for r in rows], [r["sh_error"] for r in rows], marker="o",
+                        color=colours[bounces], linestyle="--" if sampled is False else "-", label=label)
+                for r in rows:
+                    ax.annotate(str(r["rays"]), (max(r["seconds"], 1e-4), r["sh_error"]), fontsize=6,
+                                textcoords="offset points", xytext=(3, 2))
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("bake time (s); points labelled with rays per probe")
+            ax.set_ylabel("SH error vs high-sample reference (relative RMS)")
+            ax.set_title(os.path.basename(scene["scene"]))
+            ax.legend(fontsize=7)
+            ax.grid(True, which="both", alpha=0.3)
+        return fig, "bake_error_vs_time.png"
+
+    # ---- part 5
+
+    def probe_convergence(self, doc):
+        plt = self.plt
+        levels = doc["levels"]
+        spacing = [l["spacing"][0] for l in levels]
+        fig, (left, right) = plt.subplots(1, 2, figsize=(10.5, 4.0))
+        fig.subplots_adjust(wspace=0.3)
+        left.plot(spacing, [l["rms_error"] for l in levels], marker="o", label="tetrahedral store (grid of probes)")
+        noise = doc.get("noise_floor", {}).get("rms_error")
+        if noise is not None:
+            left.axhline(noise, color="grey", linestyle=":", label="noise floor (second direct bake)")
+        for l, x in zip(levels, spacing):
+            left.annotate("%d probes" % l["probes"], (x, l["rms_error"]), fontsize=7, textcoords="offset points",
+                          xytext=(4, 3))
+        left.set_xscale("log")
+        left.set_yscale("log")
+        left.invert_xaxis()
+        left.set_xlabel("probe spacing along x (m), halved per level")
+        left.set_ylabel("RMS irradiance error (relative)")
+        left.set_title("%s: error as the spacing halves" % os.path.basename(str(doc.get("scene"))))
+        left.legend(fontsize=7, loc="lower left")
+        left.grid(True, which="both", alpha=0.3)
+        probes = [l["probes"] for l in levels]
+        right.plot(probes, [l["fast_bytes"] for l in levels], marker="o", label="fast layout")
+        right.plot(probes, [l["compact_bytes"] for l in levels], marker="s", label="compact layout")
+        right.set_xscale("log")
+        right.set_yscale("log")
+        right.set_xlabel("probes")
+        right.set_ylabel("store bytes")
+        right.set_title("memory")
+        right.legend(fontsize=7)
+        right.grid(True, which="both", alpha=0.3)
+        return fig, "probe_convergence.png"

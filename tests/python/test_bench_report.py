@@ -1,0 +1,150 @@
+"""samples/bench/report.py and scipy_locate.py on a small synthetic set of benchmark results.
+
+The fixtures in bench_fixtures/ follow the schemas of tetprobe_bench's parts: methods.json and
+precision.json as documented in samples/bench/bench_methods.cpp (hand-made values), locate.json,
+scipy_locate.json, bake.json and probes.json from a `--quick` run.
+"""
+import json
+import os
+import shutil
+import sys
+
+import pytest
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+FIXTURES = os.path.join(HERE, "bench_fixtures")
+sys.path.insert(0, os.path.join(HERE, "..", "..", "samples", "bench"))
+
+import report  # noqa: E402
+import scipy_locate  # noqa: E402
+
+SECTIONS = ["## 1. Interpolation methods", "## 2. Precision, layout and SH order", "## 3. Locate", "## 4. Bake",
+            "## 5. Probe count", "## 6. Headline ratios", "## Store benchmark"]
+PLOTS = ["methods_error_vs_time_fixture_rooms.png", "slices_fixture_rooms.png", "popping_fixture_rooms.png",
+         "bake_error_vs_time.png", "probe_convergence.png"]
+
+
+def _results(tmp_path, leave_out=()):
+    for name in os.listdir(FIXTURES):
+        if name not in leave_out:
+            shutil.copy(os.path.join(FIXTURES, name), tmp_path / name)
+    (tmp_path / "store.md").write_text("## Store benchmark\n\n| a | b |\n| --- | --- |\n| 1 | 2 |\n")
+    return tmp_path
+
+
+@pytest.fixture
+def no_plots(monkeypatch):
+    """Only the first test draws: matplotlib takes seconds per report, and the others test the text."""
+    monkeypatch.setattr(report.report_plots.Plotter, "draw", lambda self, method, *args: (None, "not drawn in tests"))
+
+
+def _run(directory):
+    assert report.main(["report.py", str(directory)]) == 0
+    return (directory / "report.md").read_text()
+
+
+def _section(text, heading):
+    start = text.index(heading)
+    following = [text.index(h) for h in SECTIONS if h != heading and text.find(h) > start]
+    return text[start:min(following) if following else len(text)]
+
+
+def test_every_section_and_plot_of_a_complete_run(tmp_path):
+    pytest.importorskip("matplotlib")
+    text = _run(_results(tmp_path))
+    for heading in SECTIONS:
+        assert heading in text
+    assert "Every part and peer ran." in text
+    assert "**Not run:**" not in text
+    for name in PLOTS:
+        path = tmp_path / name
+        assert path.stat().st_size > 1000, name
+        assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        assert "](%s)" % name in text
+    # Every method of the fixture has its row, and the store part's own markdown is included.
+    for label in ("tetrahedral (fast)", "grid, equal memory", "4 nearest, damped"):
+        assert "| %s |" % label in _section(text, "## 1. Interpolation methods")
+    assert "| 1 | 2 |" in _section(text, "## Store benchmark")
+    # The README's digest links the plots where `make bench-docs` puts them, and repeats the ratios.
+    digest = (tmp_path / "readme_section.md").read_text()
+    for name in ("methods_error_vs_time_fixture_rooms.png", "bake_error_vs_time.png", "probe_convergence.png"):
+        assert "(docs/bench/%s)" % name in digest
+    assert "| grid error / ours at equal memory (RMS), fixture rooms | 1.4x |" in digest
+
+
+def test_headline_ratios_come_from_the_parts(tmp_path, no_plots):
+    text = _run(_results(tmp_path))
+    ratios = _section(text, "## 6. Headline ratios")
+    with open(os.path.join(FIXTURES, "methods.json")) as f:
+        methods = {m["id"]: m for m in json.load(f)["scenes"][0]["methods"]}
+    grid = methods["grid_equal_memory"]["rms_error"] / methods["tetrahedral_fast"]["rms_error"]
+    assert "| grid error / ours at equal memory (RMS), fixture rooms | %sx |" % report.num(grid) in ratios
+    with open(os.path.join(FIXTURES, "locate.json")) as f:
+        size = json.load(f)["sizes"][0]
+    rows = {(r["method"], r["query"]): r["ns_per_query"] for r in size["rows"]}
+    cgal = rows[("CGAL", "coherent")] / rows[("tetprobe", "coherent")]
+    assert "CGAL / ours, coherent locate, %s probes | %sx |" % (size["probes"], report.num(cgal)) in ratios
+    floor = size["interpolate_coherent_ns"] / size["floor_ns"]
+    assert "| %sx |" % report.num(floor) in ratios
+    # Culling ratios only for scenes where the plan culls a shadow caster (the race track: 1 of 5).
+    assert "race_track.json | " in ratios and "cornell_box.json | " not in ratios
+
+
+def test_a_missing_part_is_said_not_dropped(tmp_path, no_plots):
+    text = _run(_results(tmp_path, leave_out=("methods.json", "probes.json")))
+    for heading in SECTIONS:
+        assert heading in text
+    assert "**Not run:** methods.json is missing (tetprobe_bench methods did not write it)" in \
+        _section(text, "## 1. Interpolation methods")
+    assert "**Not run:** probes.json is missing" in _section(text, "## 5. Probe count")
+    summary = text[:text.index(SECTIONS[0])]
+    assert "- tetprobe_bench methods: methods.json is missing" in summary
+    assert "- tetprobe_bench probes: probes.json is missing" in summary
+
+
+def test_peers_that_could_not_run_are_said(tmp_path, no_plots):
+    directory = _results(tmp_path)
+    locate = json.loads((directory / "locate.json").read_text())
+    locate["peers_not_run"] = {"CGAL": "libcgal-dev not found when tetprobe_bench was built"}
+    (directory / "locate.json").write_text(json.dumps(locate))
+    (directory / "scipy_locate.json").write_text(json.dumps({"part": "scipy_locate", "not_run": "scipy not installed"}))
+    (directory / "store.md").unlink()
+    text = _run(directory)
+    section = _section(text, "## 3. Locate")
+    assert "**Not run:** CGAL: libcgal-dev not found" in section
+    assert "**Not run:** scipy find_simplex: scipy not installed" in section
+    summary = text[:text.index(SECTIONS[0])]
+    assert "- locate peer CGAL: libcgal-dev not found" in summary
+    assert "- locate peer scipy: scipy not installed" in summary
+    assert "- tetprobe_bench store: store.md is missing" in summary
+
+
+def test_an_unreadable_part_is_said(tmp_path, no_plots):
+    directory = _results(tmp_path)
+    (directory / "bake.json").write_text("{ truncated")
+    text = _run(directory)
+    assert "**Not run:** bake.json is unreadable" in _section(text, "## 4. Bake")
+
+
+def test_scipy_locate_times_the_benchmark_points(tmp_path):
+    np = pytest.importorskip("numpy")
+    pytest.importorskip("scipy")
+    rng = np.random.default_rng(3)
+    corners = np.array([[x, y, z] for x in (0, 10) for y in (0, 10) for z in (0, 10)], dtype=np.float32)
+    probes = np.vstack([corners, rng.uniform(0, 10, (52, 3)).astype(np.float32)])
+    points = rng.uniform(2, 8, (200, 3)).astype(np.float32)
+    np.save(tmp_path / "p.npy", probes)
+    np.save(tmp_path / "q.npy", points)
+    (tmp_path / "locate.json").write_text(json.dumps(
+        {"sizes": [{"probes": 60, "files": {"probes": "p.npy", "coherent": "q.npy", "cold": "q.npy"}}]}))
+    result = scipy_locate.measure(str(tmp_path))
+    rows = result["sizes"][0]["rows"]
+    assert [r["query"] for r in rows] == ["coherent", "teleport"]
+    for r in rows:
+        assert r["queries"] == 200 and r["outside"] == 0
+        assert r["ns_per_query"] > 0 and r["ns_per_query_one_call_each"] > 0
+
+
+def test_scipy_locate_without_the_locate_part(tmp_path):
+    result = scipy_locate.measure(str(tmp_path))
+    assert "no locate.json" in result["not_run"]
