@@ -3,6 +3,7 @@ and its `tetprobe` console script against the library found by $TETPROBE_LIBRARY
 system's search path (here LD_LIBRARY_PATH)."""
 import ctypes.util
 import os
+import pathlib
 import shutil
 import subprocess
 import sys
@@ -77,11 +78,22 @@ def test_console_script_is_the_command(installed):
     assert result.returncode == 2 and result.stderr.startswith('tetprobe: unknown command "frobnicate"\nusage:')
 
 
+def install_like_the_system(library, directory):
+    """Copies library into directory as an install would: the real file and each symlink naming it
+    (libtetprobe.so -> libtetprobe.so.MAJOR.MINOR -> ...), so the SONAME that find_library reports resolves."""
+    link = pathlib.Path(library)
+    while link.is_symlink():
+        target = pathlib.Path(os.readlink(link))
+        (directory / link.name).symlink_to(target.name)
+        link = target if target.is_absolute() else link.parent / target
+    shutil.copy(link, directory / link.name)
+
+
 def test_library_next_to_the_package_and_on_the_system_path(installed, tmp_path):
     # On the system's search path: LD_LIBRARY_PATH is what ctypes.util.find_library consults for users' libs.
     system_dir = tmp_path / "lib"
     system_dir.mkdir()
-    shutil.copy(LIBRARY, system_dir / "libtetprobe.so")
+    install_like_the_system(LIBRARY, system_dir)
     result = smoke(installed, LD_LIBRARY_PATH=str(system_dir))
     assert result.returncode == 0, result.stderr
     assert "libtetprobe.so" in result.stdout.splitlines()[1]  # the name found (the SONAME where it has one)
