@@ -79,14 +79,16 @@ def test_console_script_is_the_command(installed):
 
 
 def install_like_the_system(library, directory):
-    """Copies library into directory as an install would: the real file and each symlink naming it
-    (libtetprobe.so -> libtetprobe.so.MAJOR.MINOR -> ...), so the SONAME that find_library reports resolves."""
-    link = pathlib.Path(library)
-    while link.is_symlink():
-        target = pathlib.Path(os.readlink(link))
-        (directory / link.name).symlink_to(target.name)
-        link = target if target.is_absolute() else link.parent / target
-    shutil.copy(link, directory / link.name)
+    """Copies library into directory as an install would: the real file (libtetprobe.so.X.Y.Z) and a link
+    for each shorter name (libtetprobe.so, .so.X, .so.X.Y), so whichever name find_library reports (the
+    SONAME) resolves."""
+    real = pathlib.Path(os.path.realpath(library))
+    shutil.copy(real, directory / real.name)
+    stem, _, version = real.name.partition(".so")
+    parts = [part for part in version.split(".") if part]
+    for count in range(len(parts)):
+        name = stem + ".so" + "".join("." + part for part in parts[:count])
+        (directory / name).symlink_to(real.name)
 
 
 def test_library_next_to_the_package_and_on_the_system_path(installed, tmp_path):
