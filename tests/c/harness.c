@@ -138,6 +138,10 @@ int main(int argc, char** argv) {
     test_option_struct_defaults();
     test_sh_basis_functions();
     test_sh_ambient_and_directional();
+    test_sh_eval_options_orders_and_windows();
+    test_sh_zh3();
+    test_sh_min_irradiance_and_nonnegative_window();
+    test_sh_eval_options_errors();
     test_shadow_caster_volumes();
     test_golden_store_answers();
     test_golden_store_queries_and_errors();

@@ -59,12 +59,16 @@ tp_store* build_cloud(float* positions, float* sh, uint32_t flags);
 tp_store* build_with_flags(const float* positions, const float* sh, size_t count, uint32_t flags);
 tp_store_info info_of(const tp_store* store);
 
-/* ---- topics, run time: basics.c, sh.c, volumes.c, golden_store.c. */
+/* ---- topics, run time: basics.c, sh.c, sh_options.c, volumes.c, golden_store.c. */
 void test_version_and_status_names(void);
 void test_last_error_is_per_call(void);
 void test_option_struct_defaults(void);
 void test_sh_basis_functions(void);
 void test_sh_ambient_and_directional(void);
+void test_sh_eval_options_orders_and_windows(void);
+void test_sh_zh3(void);
+void test_sh_min_irradiance_and_nonnegative_window(void);
+void test_sh_eval_options_errors(void);
 void test_shadow_caster_volumes(void);
 void test_golden_store_answers(void);
 void test_golden_store_queries_and_errors(void);
