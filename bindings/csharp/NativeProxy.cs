@@ -134,7 +134,7 @@ namespace TetProbe
 
         /// <summary>Tests only: runs between a call that returns a pointer into a handle's object and the copy out of it.
         /// </summary>
-        internal static Action<SafeHandle> BeforeBorrowedCopy;
+        internal static Action<SafeHandle> BeforeBorrowedCopy = null;
 
         /// <summary>The store's blob, copied. tp_store_blob points into the store: the handle stays referenced until the
         /// copy is done, so a Dispose on another thread meanwhile defers the release instead of freeing what is read.</summary>
