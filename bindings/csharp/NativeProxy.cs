@@ -254,6 +254,40 @@ namespace TetProbe
             return rgb;
         }
 
+        public static Vector3 ShEvalIrradiance(ref SphericalHarmonicsL2 sh, Vector3 normal, ShEvalOptions options)
+        {
+            EnsureVersion();
+            options = options.Sized();
+            Vector3 rgb;
+            Check(NativeMethods.tp_sh_eval_irradiance_ex(ref sh, ref normal, ref options, out rgb));
+            return rgb;
+        }
+
+        public static void ShApplyOptions(ref SphericalHarmonicsL2 sh, ShEvalOptions options)
+        {
+            EnsureVersion();
+            options = options.Sized();
+            Check(NativeMethods.tp_sh_apply_options(ref sh, ref options));
+        }
+
+        public static Vector3 ShMinIrradiance(ref SphericalHarmonicsL2 sh, ShEvalOptions options, out Vector3 normal)
+        {
+            EnsureVersion();
+            options = options.Sized();
+            Vector3 rgb;
+            Check(NativeMethods.tp_sh_min_irradiance(ref sh, ref options, out rgb, out normal));
+            return rgb;
+        }
+
+        public static float ShNonNegativeWindowStrength(ref SphericalHarmonicsL2 sh, ShOrder order)
+        {
+            EnsureVersion();
+            ShEvalOptions options = new ShEvalOptions { Order = order }.Sized();
+            float strength;
+            Check(NativeMethods.tp_sh_nonnegative_window_strength(ref sh, ref options, out strength));
+            return strength;
+        }
+
         public static float[] ShadowCasterVolume(float[] planes, uint lightType, Vector3 lightVector)
         {
             EnsureVersion();
