@@ -10,7 +10,6 @@ using System.Threading;
 using TetProbe;
 using UnityEditor;
 using UnityEngine;
-using UnityEngine.Rendering;
 using ProbeScene = TetProbe.Scene;
 using ProbeLight = TetProbe.Light;
 using ProbeMaterial = TetProbe.Material;
@@ -103,7 +102,7 @@ public static class LightProbeBaker
         else return null;
         Color c;
         float intensity;
-        if (GraphicsSettings.lightsUseLinearIntensity)
+        if (UnityEngine.Rendering.GraphicsSettings.lightsUseLinearIntensity)
         {
             c = light.color.linear;
             intensity = (float)Math.PI * light.intensity;
