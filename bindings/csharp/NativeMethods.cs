@@ -124,6 +124,12 @@ namespace TetProbe
         public const uint LightModeBaked = 0;
         public const uint LightModeRealtime = 1;
         public const uint BakeNoCulling = 1;
+        public const uint ShOrderL2 = 0;
+        public const uint ShOrderL1 = 1;
+        public const uint ShOrderZh3 = 2;
+        public const uint ShWindowNone = 0;
+        public const uint ShWindowSloan = 1;
+        public const uint ShWindowNonnegative = 2;
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern uint tp_version();
@@ -210,6 +216,24 @@ namespace TetProbe
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_sh_add_directional(ref SphericalHarmonicsL2 sh, ref Vector3 direction, ref Vector3 rgb);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_sh_eval_options_init(out ShEvalOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_sh_eval_irradiance_ex(ref SphericalHarmonicsL2 sh, ref Vector3 normal,
+            ref ShEvalOptions options, out Vector3 rgb);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_sh_apply_options(ref SphericalHarmonicsL2 sh, ref ShEvalOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_sh_min_irradiance(ref SphericalHarmonicsL2 sh, ref ShEvalOptions options,
+            out Vector3 min_rgb, out Vector3 normal);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_sh_nonnegative_window_strength(ref SphericalHarmonicsL2 sh, ref ShEvalOptions options,
+            out float strength);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern UIntPtr tp_shadow_caster_volume_bound(UIntPtr plane_count);

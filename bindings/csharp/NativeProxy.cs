@@ -59,6 +59,13 @@ namespace TetProbe
                     "the plugin (lib" + NativeMethods.Library + ".so, " + NativeMethods.Library + ".dll or lib" +
                     NativeMethods.Library + ".dylib) where the runtime looks for native libraries", e);
             }
+            catch (EntryPointNotFoundException e)
+            {
+                // A library of that name without tp_version: an old tetprobe or another library altogether.
+                throw new TetProbeException(TetProbeStatus.Version, "the native library '" + NativeMethods.Library + "' has no " +
+                    "tp_version: it is not a tetprobe plugin of this release (this binding needs " + BindingVersionMajor + "." +
+                    BindingVersionMinor + ".x): ship the binding and the plugin of the same release", e);
+            }
             uint major = version >> 16, minor = (version >> 8) & 0xFF;
             if (major != BindingVersionMajor || minor != BindingVersionMinor)
                 throw new TetProbeException(TetProbeStatus.Version, "the native library '" + NativeMethods.Library + "' is version " +
@@ -125,14 +132,30 @@ namespace TetProbe
             Check(NativeMethods.tp_store_save_file(store, Utf8Path(path)));
         }
 
+        /// <summary>Tests only: runs between a call that returns a pointer into a handle's object and the copy out of it.
+        /// </summary>
+        internal static Action<SafeHandle> BeforeBorrowedCopy = null;
+
+        /// <summary>The store's blob, copied. tp_store_blob points into the store: the handle stays referenced until the
+        /// copy is done, so a Dispose on another thread meanwhile defers the release instead of freeing what is read.</summary>
         public static byte[] Blob(StoreHandle store)
         {
-            IntPtr data;
-            UIntPtr size;
-            Check(NativeMethods.tp_store_blob(store, out data, out size));
-            var bytes = new byte[(long)size.ToUInt64()];
-            Marshal.Copy(data, bytes, 0, bytes.Length);
-            return bytes;
+            bool referenced = false;
+            try
+            {
+                store.DangerousAddRef(ref referenced);
+                IntPtr data;
+                UIntPtr size;
+                Check(NativeMethods.tp_store_blob(store, out data, out size));
+                if (BeforeBorrowedCopy != null) BeforeBorrowedCopy(store);
+                var bytes = new byte[(long)size.ToUInt64()];
+                Marshal.Copy(data, bytes, 0, bytes.Length);
+                return bytes;
+            }
+            finally
+            {
+                if (referenced) store.DangerousRelease();
+            }
         }
 
         public static NativeStoreInfo Info(StoreHandle store)
@@ -229,6 +252,40 @@ namespace TetProbe
             Vector3 rgb;
             Check(NativeMethods.tp_sh_eval_irradiance(ref sh, ref normal, out rgb));
             return rgb;
+        }
+
+        public static Vector3 ShEvalIrradiance(ref SphericalHarmonicsL2 sh, Vector3 normal, ShEvalOptions options)
+        {
+            EnsureVersion();
+            options = options.Sized();
+            Vector3 rgb;
+            Check(NativeMethods.tp_sh_eval_irradiance_ex(ref sh, ref normal, ref options, out rgb));
+            return rgb;
+        }
+
+        public static void ShApplyOptions(ref SphericalHarmonicsL2 sh, ShEvalOptions options)
+        {
+            EnsureVersion();
+            options = options.Sized();
+            Check(NativeMethods.tp_sh_apply_options(ref sh, ref options));
+        }
+
+        public static Vector3 ShMinIrradiance(ref SphericalHarmonicsL2 sh, ShEvalOptions options, out Vector3 normal)
+        {
+            EnsureVersion();
+            options = options.Sized();
+            Vector3 rgb;
+            Check(NativeMethods.tp_sh_min_irradiance(ref sh, ref options, out rgb, out normal));
+            return rgb;
+        }
+
+        public static float ShNonNegativeWindowStrength(ref SphericalHarmonicsL2 sh, ShOrder order)
+        {
+            EnsureVersion();
+            ShEvalOptions options = new ShEvalOptions { Order = order }.Sized();
+            float strength;
+            Check(NativeMethods.tp_sh_nonnegative_window_strength(ref sh, ref options, out strength));
+            return strength;
         }
 
         public static float[] ShadowCasterVolume(float[] planes, uint lightType, Vector3 lightVector)

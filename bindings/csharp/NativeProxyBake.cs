@@ -53,13 +53,27 @@ namespace TetProbe
             Check(NativeMethods.tp_scene_set_sky_sh(scene, ref sh));
         }
 
+        /// <summary>The scene's probes, copied. tp_scene_probes points into the scene: the handle stays referenced until
+        /// the copy is done, so a Dispose on another thread meanwhile defers the release instead of freeing what is read.
+        /// </summary>
         public static Vector3[] Probes(SceneHandle scene)
         {
-            IntPtr data;
-            UIntPtr count;
-            Check(NativeMethods.tp_scene_probes(scene, out data, out count));
-            var floats = new float[3 * (long)count.ToUInt64()];
-            if (floats.Length > 0) Marshal.Copy(data, floats, 0, floats.Length);
+            bool referenced = false;
+            var floats = new float[0];
+            try
+            {
+                scene.DangerousAddRef(ref referenced);
+                IntPtr data;
+                UIntPtr count;
+                Check(NativeMethods.tp_scene_probes(scene, out data, out count));
+                if (BeforeBorrowedCopy != null) BeforeBorrowedCopy(scene);
+                floats = new float[3 * (long)count.ToUInt64()];
+                if (floats.Length > 0) Marshal.Copy(data, floats, 0, floats.Length);
+            }
+            finally
+            {
+                if (referenced) scene.DangerousRelease();
+            }
             var probes = new Vector3[floats.Length / 3];
             for (int i = 0; i < probes.Length; ++i) probes[i] = new Vector3(floats[3 * i], floats[3 * i + 1], floats[3 * i + 2]);
             return probes;

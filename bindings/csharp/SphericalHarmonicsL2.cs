@@ -150,6 +150,33 @@ namespace TetProbe
             return NativeProxy.ShEvalIrradiance(ref this, normal);
         }
 
+        /// <summary>Irradiance on a surface with unit normal `normal` under the options' order and window; bit for bit
+        /// EvaluateIrradiance of the SH after ApplyOptions(options).</summary>
+        public Vector3 EvaluateIrradiance(Vector3 normal, ShEvalOptions options)
+        {
+            return NativeProxy.ShEvalIrradiance(ref this, normal, options);
+        }
+
+        /// <summary>Rewrites the coefficients so that the plain EvaluateIrradiance is the evaluation the options choose
+        /// (apply once per probe, keep the engine's plain L2 evaluation).</summary>
+        public void ApplyOptions(ShEvalOptions options)
+        {
+            NativeProxy.ShApplyOptions(ref this, options);
+        }
+
+        /// <summary>The smallest irradiance over all unit normals per channel under the options (exact, not sampled), and
+        /// in `normal` the unit normal where the smallest of the three occurs.</summary>
+        public Vector3 MinIrradiance(ShEvalOptions options, out Vector3 normal)
+        {
+            return NativeProxy.ShMinIrradiance(ref this, options, out normal);
+        }
+
+        /// <summary>The Sloan window strength ShWindow.NonNegative picks for this SH under `order`.</summary>
+        public float NonNegativeWindowStrength(ShOrder order = ShOrder.L2)
+        {
+            return NativeProxy.ShNonNegativeWindowStrength(ref this, order);
+        }
+
         public bool Equals(SphericalHarmonicsL2 other)
         {
             for (int i = 0; i < Floats; ++i)

@@ -32,5 +32,12 @@ namespace TetProbe
         {
             Status = status;
         }
+
+        /// <summary>A failure found through another exception (e.g. a plugin without an expected entry point).</summary>
+        public TetProbeException(TetProbeStatus status, string message, Exception inner)
+            : base(status + ": " + message, inner)
+        {
+            Status = status;
+        }
     }
 }

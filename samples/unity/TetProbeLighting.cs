@@ -24,6 +24,9 @@ public class TetProbeLighting : MonoBehaviour
     ProbeSH[] interpolated;
     readonly UnitySH[] one = new UnitySH[1];
     MaterialPropertyBlock block;
+    // The renderers lit since OnEnable and their lightProbeUsage before, restored by OnDisable.
+    Renderer[] lit;
+    LightProbeUsage[] previousUsage;
 
     void OnEnable()
     {
@@ -35,7 +38,13 @@ public class TetProbeLighting : MonoBehaviour
         positions = new Vector3[renderers.Length];
         interpolated = new ProbeSH[renderers.Length];
         block = new MaterialPropertyBlock();
-        foreach (Renderer r in renderers) r.lightProbeUsage = LightProbeUsage.CustomProvided;
+        lit = (Renderer[])renderers.Clone();
+        previousUsage = new LightProbeUsage[lit.Length];
+        for (int i = 0; i < lit.Length; ++i)
+        {
+            previousUsage[i] = lit[i].lightProbeUsage;
+            lit[i].lightProbeUsage = LightProbeUsage.CustomProvided;
+        }
     }
 
     void Update()
@@ -57,10 +66,21 @@ public class TetProbeLighting : MonoBehaviour
         }
     }
 
+    /// <summary>Gives the renderers back to Unity's lighting: their previous probe usage and no SH of ours (a
+    /// CustomProvided renderer would otherwise keep the last frame's SH for ever).</summary>
     void OnDisable()
     {
         if (probes != null) probes.Dispose();
         probes = null;
+        if (lit == null) return;
+        for (int i = 0; i < lit.Length; ++i)
+        {
+            if (lit[i] == null) continue;  // destroyed meanwhile
+            lit[i].lightProbeUsage = previousUsage[i];
+            lit[i].SetPropertyBlock(null);
+        }
+        lit = null;
+        previousUsage = null;
     }
 }
 #endif

@@ -151,5 +151,25 @@ static class SceneTests
         disposed.Dispose();
         Tests.Throws<ObjectDisposedException>(() => disposed.SetSky(new Vector3(1, 1, 1)), "scene used after Dispose");
         Tests.Throws<ObjectDisposedException>(() => Baker.Plan(disposed, probes), "plan of a disposed scene");
+
+        // Probes copies out of memory the scene owns: a Dispose between tp_scene_probes and the copy (as from another thread)
+        // must wait for the copy, else the allocator reuses the freed positions and the copy differs.
+        var racingProbes = new Vector3[64];
+        for (int i = 0; i < racingProbes.Length; ++i) racingProbes[i] = new Vector3(i, 0.5f * i, -i);
+        var racing = new Scene();
+        racing.Probes = racingProbes;
+        try
+        {
+            NativeProxy.BeforeBorrowedCopy = handle => racing.Dispose();
+            Vector3[] copied = racing.Probes;
+            bool same = copied.Length == racingProbes.Length;
+            for (int i = 0; same && i < racingProbes.Length; ++i) same = copied[i].Equals(racingProbes[i]);
+            Tests.Check(same, "a Dispose between tp_scene_probes and the copy waits for the copy (the same: " + same + ")");
+        }
+        finally
+        {
+            NativeProxy.BeforeBorrowedCopy = null;
+        }
+        Tests.Throws<ObjectDisposedException>(() => { Vector3[] unused = racing.Probes; }, "the scene is released once the copy is done");
     }
 }

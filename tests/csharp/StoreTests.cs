@@ -107,6 +107,30 @@ static class StoreTests
                                             "the message names a non-ASCII path intact",
                                             e => e.Status == TetProbeStatus.IO && e.Message.Contains("störe_missing_é.tpb"));
         }
+        DisposedDuringCopy(positions, sh);
+    }
+
+    /// <summary>Save() copies out of memory the store owns: a Dispose that lands between tp_store_blob and the copy (as from
+    /// another thread) must wait for the copy. Were the store freed there, the allocator would reuse the blob's first bytes
+    /// and the copy would differ from the blob (or the process would fault).</summary>
+    static void DisposedDuringCopy(Vector3[] positions, SphericalHarmonicsL2[] sh)
+    {
+        var store = ProbeStore.Build(positions, sh);
+        byte[] expected = store.Save();
+        try
+        {
+            NativeProxy.BeforeBorrowedCopy = handle => store.Dispose();
+            byte[] copied = store.Save();
+            bool same = copied.Length == expected.Length;
+            for (int i = 0; same && i < copied.Length; ++i) same = copied[i] == expected[i];
+            Tests.Check(same, "a Dispose between tp_store_blob and the copy waits for the copy (" + copied.Length +
+                        " bytes, the same: " + same + ")");
+        }
+        finally
+        {
+            NativeProxy.BeforeBorrowedCopy = null;
+        }
+        Tests.Throws<ObjectDisposedException>(() => store.Save(), "the store is released once the copy is done");
     }
 
     sealed class Reporter : IProgress<float>

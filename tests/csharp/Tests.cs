@@ -104,6 +104,96 @@ static class Tests
                                   e => e.Status == TetProbeStatus.InvalidArgument);
     }
 
+    /// <summary>The SH evaluation options: L2 without a window is the plain evaluation, L1 and Sloan's window are the
+    /// rewrites capi/tetprobe.h states (bit for bit), the minimum is a true lower bound reached at its normal, and the
+    /// non-negative window leaves no negative irradiance.</summary>
+    static void ShOptions()
+    {
+        var random = new Random(11);
+        var sh = new SphericalHarmonicsL2();
+        sh.AddAmbientLight(0.003f, 0.003f, 0.003f);  // too little to lift the L2 lobe's ring (about -0.04 of the light)
+        sh.AddDirectionalLight(new Vector3(0.48f, -0.6f, 0.64f), 3, 2, 1);
+        var normals = new Vector3[400];
+        for (int i = 0; i < normals.Length; ++i)
+        {
+            Vector3 v;
+            do v = new Vector3((float)random.NextDouble() * 2 - 1, (float)random.NextDouble() * 2 - 1, (float)random.NextDouble() * 2 - 1);
+            while (v.x * v.x + v.y * v.y + v.z * v.z < 0.01 || v.x * v.x + v.y * v.y + v.z * v.z > 1);
+            float m = (float)Math.Sqrt(v.x * v.x + v.y * v.y + v.z * v.z);
+            normals[i] = new Vector3(v.x / m, v.y / m, v.z / m);
+        }
+
+        ShEvalOptions plain = ShEvalOptions.Create();
+        Check(plain.Order == ShOrder.L2 && plain.Window == ShWindow.None && plain.WindowStrength == 0, "options default to L2, no window");
+        bool same = true;
+        foreach (Vector3 n in normals)
+        {
+            Vector3 a = sh.EvaluateIrradiance(n, plain), b = sh.EvaluateIrradiance(n), d = sh.EvaluateIrradiance(n, default(ShEvalOptions));
+            same &= a.Equals(b) && d.Equals(b);
+        }
+        SphericalHarmonicsL2 unchanged = sh;
+        unchanged.ApplyOptions(plain);
+        Check(same && unchanged == sh, "L2 without a window: the plain evaluation, bit for bit, and ApplyOptions changes nothing");
+
+        SphericalHarmonicsL2 l1 = sh;
+        l1.ApplyOptions(ShEvalOptions.Create(ShOrder.L1));
+        bool bands = true;
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 9; ++i) bands &= l1[c, i] == (i < 4 ? sh[c, i] : 0);
+        bool l1Same = true;
+        foreach (Vector3 n in normals) l1Same &= sh.EvaluateIrradiance(n, ShEvalOptions.Create(ShOrder.L1)).Equals(l1.EvaluateIrradiance(n));
+        Check(bands && l1Same, "L1: band 2 zeroed, bands 0 and 1 kept; evaluating with L1 = the plain evaluation of the rewrite");
+
+        // Sloan's window at s: band l times 1 / (1 + s (l (l + 1))^2) computed in double, each product rounded once to float.
+        const float s = 0.05f;
+        SphericalHarmonicsL2 windowed = sh;
+        windowed.ApplyOptions(ShEvalOptions.Create(ShOrder.L2, ShWindow.Sloan, s));
+        int[] band = { 0, 1, 1, 1, 2, 2, 2, 2, 2 };
+        bool exact = true;
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 9; ++i)
+            {
+                double laplacian = band[i] * (band[i] + 1.0);
+                double window = band[i] == 0 ? 1.0 : 1.0 / (1.0 + (double)s * laplacian * laplacian);
+                exact &= windowed[c, i] == (float)(sh[c, i] * window);
+            }
+        Check(exact, "Sloan's window scales each band by 1 / (1 + s (l (l + 1))^2)");
+
+        // The directional light's L2 lobe rings negative behind it: the minimum is at most every sample, reached at its normal.
+        Vector3 where;
+        Vector3 min = sh.MinIrradiance(plain, out where);
+        double lowest = double.MaxValue;
+        bool bounded = true;
+        foreach (Vector3 n in normals)
+        {
+            Vector3 e = sh.EvaluateIrradiance(n);
+            bounded &= e.x >= min.x - 1e-6 && e.y >= min.y - 1e-6 && e.z >= min.z - 1e-6;
+            lowest = Math.Min(lowest, Math.Min(e.x, Math.Min(e.y, e.z)));
+        }
+        Vector3 at = sh.EvaluateIrradiance(where);
+        double smallest = Math.Min(min.x, Math.Min(min.y, min.z));
+        Check(bounded && smallest < 0 && Math.Abs(Math.Min(at.x, Math.Min(at.y, at.z)) - smallest) < 1e-5 && lowest - smallest < 0.05,
+              "MinIrradiance: " + min + " at " + where + ", below every sample (lowest " + lowest + ") and reached there");
+
+        float strength = sh.NonNegativeWindowStrength();
+        SphericalHarmonicsL2 lifted = sh;
+        lifted.ApplyOptions(ShEvalOptions.Create(ShOrder.L2, ShWindow.Sloan, strength));
+        Vector3 liftedMin = lifted.MinIrradiance(plain, out where);
+        Vector3 viaWindow = sh.MinIrradiance(ShEvalOptions.Create(ShOrder.L2, ShWindow.NonNegative), out where);
+        Check(strength > 0 && liftedMin.x >= 0 && liftedMin.y >= 0 && liftedMin.z >= 0 && viaWindow.Equals(liftedMin),
+              "the non-negative window's strength " + strength + " leaves the minimum " + liftedMin + " >= 0");
+        SphericalHarmonicsL2 smaller = sh;
+        smaller.ApplyOptions(ShEvalOptions.Create(ShOrder.L2, ShWindow.Sloan, strength * 0.5f));
+        Vector3 smallerMin = smaller.MinIrradiance(plain, out where);
+        Check(Math.Min(smallerMin.x, Math.Min(smallerMin.y, smallerMin.z)) < 0, "half that strength still rings negative");
+
+        Throws<TetProbeException>(() => sh.EvaluateIrradiance(new Vector3(0, 0, 1), ShEvalOptions.Create(ShOrder.L2, ShWindow.Sloan, -1)),
+                                  "a negative window strength", e => e.Status == TetProbeStatus.InvalidArgument);
+        var unknown = ShEvalOptions.Create();
+        unknown.Order = (ShOrder)7;
+        Throws<TetProbeException>(() => sh.ApplyOptions(unknown), "an unknown order", e => e.Status == TetProbeStatus.InvalidArgument);
+    }
+
     static void Queries()
     {
         var random = new Random(5);
@@ -410,7 +500,7 @@ static class Tests
         string scenes = args.Length > 2 ? args[2] : "samples/scenes";
         Directory.CreateDirectory(scratch);
         foreach (Action<string> test in new Action<string>[] {
-                     s => Layout(), s => ShHelpers(), s => Queries(), s => LayoutsAndBatchOptions(), RoundTrips,
+                     s => Layout(), s => ShHelpers(), s => ShOptions(), s => Queries(), s => LayoutsAndBatchOptions(), RoundTrips,
                      s => Volumes(), s => HeaderCheck.Run(header), s => SceneTests.Run(scenes), StoreTests.Run,
                      s => VersionTests.Run() })
         {

@@ -1,6 +1,7 @@
 // samples/unity and the Unity conversions, compiled against the stand-ins in unity_stubs/ and run with the real
 // library: a light added on either side evaluates to the same irradiance on the other (the stubs' Unity
-// SphericalHarmonicsL2 follows Unity's published formulas, ShadeSH9 is UnityCG.cginc's), then the editor script bakes
+// SphericalHarmonicsL2 follows Unity's published formulas, ShadeSH9 is UnityCG.cginc's) and the conversion of a
+// directional light gives coefficients derived by hand from those formulas; then the editor script bakes
 // a small stub scene and TetProbeLighting lights a renderer from the store it wrote.
 using System;
 using System.IO;
@@ -100,6 +101,35 @@ static class UnityTests
         Check(Math.Abs(facing.x - 3) < 1e-5 && Math.Abs(facing.y - 1.5) < 1e-5 && Math.Abs(facing.z - 0.75) < 1e-5,
               "stub: Unity's directional light facing it renders as 2 I C (" + facing + ")");
 
+        // Golden coefficients, derived by hand from Unity's published formulas and not from the stubs or the conversion
+        // (no capture from a real editor is available here). AddDirectionalLight(Vector3.up, Color.white, 1): Unity's C#
+        // doubles the intensity (color * (2 * intensity)), so the radiance delta from +y has weight 2; the native part
+        // projects it as Sloan's SHEvalDirectionalLight9: basis Y_i(up) (Condon-Shortley: Y00 = 1/(2 sqrt(pi)),
+        // Y1-1 = -sqrt(3)/(2 sqrt(pi)) y, Y20 = sqrt(5)/(4 sqrt(pi)) (3z^2 - 1), Y22 = sqrt(15)/(4 sqrt(pi)) (x^2 - y^2),
+        // the rest 0 at up) times 16pi/17, and stores each times the reconstruction constant of appendix A10 (1/(2 sqrt(pi)),
+        // -sqrt(3)/(3 sqrt(pi)), sqrt(5)/(16 sqrt(pi)), sqrt(15)/(16 sqrt(pi))). In Unity's order L00, L1-1, L10, L11, L2-2,
+        // L2-1, L20, L21, L22: u0 = 2 (16pi/17) (1/(2 sqrt(pi))) (1/(2 sqrt(pi))) = 8/17; u1 = 2 (16pi/17) (-sqrt(3)/(2 sqrt(pi)))
+        // (-sqrt(3)/(3 sqrt(pi))) = 16/17; u6 = 2 (16pi/17) (-sqrt(5)/(4 sqrt(pi))) (sqrt(5)/(16 sqrt(pi))) = -5/34;
+        // u8 = 2 (16pi/17) (-sqrt(15)/(4 sqrt(pi))) (sqrt(15)/(16 sqrt(pi))) = -15/34; the others 0. Check: ShadeSH9 facing up
+        // is u0 + u1 - u6 - u8 = 2 = 2 I C, Unity's documented doubling.
+        float[] golden = { 8f / 17, 16f / 17, 0, 0, 0, 0, -5f / 34, 0, -15f / 34 };
+        var goldenOurs = new ProbeSH();
+        float weightUp = (float)(2 * 16 * Math.PI / 17);
+        goldenOurs.AddDirectionalLight(new Vector3(0, -1, 0), weightUp, weightUp, weightUp);  // travelling down: from up
+        UnitySH goldenConverted = UnitySphericalHarmonics.ToUnity(goldenOurs);
+        var goldenStub = new UnitySH();
+        goldenStub.AddDirectionalLight(Vector3.up, Color.white, 1);
+        double goldenWorst = 0, stubWorst = 0;
+        for (int c = 0; c < 3; ++c)
+            for (int i = 0; i < 9; ++i)
+            {
+                goldenWorst = Math.Max(goldenWorst, Math.Abs(goldenConverted[c, i] - golden[i]));
+                stubWorst = Math.Max(stubWorst, Math.Abs(goldenStub[c, i] - golden[i]));
+            }
+        Check(goldenWorst < 1e-6, "ToUnity(our directional light from up, 2 * 16pi/17) = the hand-derived coefficients of Unity's " +
+              "AddDirectionalLight(up, white, 1) (8/17, 16/17, -5/34, -15/34; worst " + goldenWorst + ")");
+        Check(stubWorst < 1e-6, "the stub's AddDirectionalLight gives the hand-derived coefficients (worst " + stubWorst + ")");
+
         // Unity -> ours: the same light, coefficient by coefficient and by irradiance.
         var ambientOurs = new ProbeSH();
         ambientOurs.AddAmbientLight(0.2f, 0.5f, 1.0f);
@@ -163,6 +193,17 @@ static class UnityTests
         var floorMaterial = new UnityEngine.Material();
         floorMaterial.color = new Color(0.5f, 0.5f, 0.5f);
         floor.AddComponent<MeshRenderer>().sharedMaterial = floorMaterial;
+        UnityEditor.GameObjectUtility.SetStaticEditorFlags(floor, UnityEditor.StaticEditorFlags.ContributeGI);
+
+        // A dynamic object over the probes (batching-static only): Unity's bake ignores it, so must ours (else it shades
+        // every probe from the sun).
+        var roof = new GameObject("character roof");
+        var roofMesh = new Mesh();
+        roofMesh.vertices = new[] { new Vector3(-5, 6, -5), new Vector3(20, 6, -5), new Vector3(20, 6, 20), new Vector3(-5, 6, 20) };
+        roofMesh.triangles = new[] { 0, 1, 2, 0, 2, 3 };
+        roof.AddComponent<MeshFilter>().sharedMesh = roofMesh;
+        roof.AddComponent<MeshRenderer>().sharedMaterial = floorMaterial;
+        UnityEditor.GameObjectUtility.SetStaticEditorFlags(roof, UnityEditor.StaticEditorFlags.BatchingStatic);
 
         var sun = new GameObject("sun").AddComponent<UnityEngine.Light>();
         sun.type = UnityEngine.LightType.Directional;
@@ -172,7 +213,22 @@ static class UnityTests
         RenderSettings.ambientProbe = new UnitySH();
         RenderSettings.ambientProbe.AddAmbientLight(new Color(0.1f, 0.1f, 0.1f));
 
+        // A Mixed light (its direct light is drawn in real time: only its bounce is baked) and a Realtime one (not baked).
+        var mixed = new GameObject("mixed lamp").AddComponent<UnityEngine.Light>();
+        mixed.transform.position = new Vector3(12, 3, 2);
+        mixed.lightmapBakeType = LightmapBakeType.Mixed;
+        var realtime = new GameObject("realtime lamp").AddComponent<UnityEngine.Light>();
+        realtime.transform.position = new Vector3(12, 3, 2);
+        realtime.lightmapBakeType = LightmapBakeType.Realtime;
+
         Vector3[] positions = LightProbeBaker.ProbePositions();
+        using (TetProbe.Scene converted = LightProbeBaker.FromOpenScene())
+        {
+            EffectsPlan seen = Baker.Plan(converted, positions);
+            Check(seen.Meshes == 1, "baker: only the ContributeGI mesh is baked, not the dynamic one (" + seen.Meshes + " meshes)");
+            Check(seen.Lights == 2 && seen.RealtimeLights == 1, "baker: the Baked sun and the Mixed lamp (bounce only), not the " +
+                  "Realtime lamp (" + seen.Lights + " lights, " + seen.RealtimeLights + " realtime)");
+        }
         Check(positions.Length == 27 && positions[0].Equals(new Vector3(10, 0.5f, 0)), "baker: LightProbeGroup probes in world space");
         string asset = Path.Combine(scratch, "level_probes.bytes");
         string plan = LightProbeBaker.Bake(asset, new BakeOptions { Rays = 64, Bounces = 1 });
@@ -226,6 +282,63 @@ static class UnityTests
         Check(block.GetVectorArray("unity_SHAr")[0].w != pushed[0].w || block.GetVectorArray("unity_SHAr")[0].y != pushed[0].y,
               "lighting: a moved renderer gets new SH the next frame");
         Invoke(lighting, "OnDisable");
+        renderer.GetPropertyBlock(block);
+        Check(renderer.lightProbeUsage == UnityEngine.Rendering.LightProbeUsage.BlendProbes &&
+              block.GetVectorArray("unity_SHAr") == null, "lighting: disabled, the renderer gets back its probe usage and no SH of ours");
+
+        // Re-enabled and disabled again: the usage it had before the first enable, not CustomProvided, comes back.
+        renderer.lightProbeUsage = UnityEngine.Rendering.LightProbeUsage.Off;
+        Invoke(lighting, "OnEnable");
+        Invoke(lighting, "Update");
+        Invoke(lighting, "OnDisable");
+        Check(renderer.lightProbeUsage == UnityEngine.Rendering.LightProbeUsage.Off, "lighting: each renderer's own usage is restored");
+    }
+
+    /// <summary>The editor script's light conversion: which lights Unity's probes hold, and Unity's colour linearisation.
+    /// </summary>
+    static void LightConversion()
+    {
+        UnityEngine.Object.ResetStubScene();
+        var light = new GameObject("lamp").AddComponent<UnityEngine.Light>();
+        light.color = new Color(0.5f, 0.25f, 1);
+        light.intensity = 2;
+        bool linearIntensity = UnityEngine.Rendering.GraphicsSettings.lightsUseLinearIntensity;
+        try
+        {
+            light.lightmapBakeType = LightmapBakeType.Baked;
+            TetProbe.Light? baked = LightProbeBaker.ProbeLightOf(light);
+            light.lightmapBakeType = LightmapBakeType.Mixed;
+            TetProbe.Light? mixed = LightProbeBaker.ProbeLightOf(light);
+            light.lightmapBakeType = LightmapBakeType.Realtime;
+            TetProbe.Light? realtime = LightProbeBaker.ProbeLightOf(light);
+            Check(baked.HasValue && baked.Value.Mode == LightMode.Baked, "Baked light: direct and bounce baked");
+            Check(mixed.HasValue && mixed.Value.Mode == LightMode.Realtime, "Mixed light: bounce only (probes hold no direct light)");
+            Check(!realtime.HasValue, "Realtime light: not baked (Unity's baked GI ignores it)");
+            light.lightmapBakeType = LightmapBakeType.Baked;
+
+            // Gamma intensity (the built-in default): (0.5, 0.25, 1) * 2 = (1, 0.5, 2) linearised together, times pi.
+            // sRGB to linear of 0.5 is ((0.5 + 0.055) / 1.055)^2.4, of 1 is 1, of 2 is ((2 + 0.055) / 1.055)^2.4.
+            UnityEngine.Rendering.GraphicsSettings.lightsUseLinearIntensity = false;
+            TetProbe.Light gamma = LightProbeBaker.ProbeLightOf(light).Value;
+            double[] expectGamma = { Math.PI, Math.PI * Math.Pow(0.555 / 1.055, 2.4), Math.PI * Math.Pow(2.055 / 1.055, 2.4) };
+            // Linear intensity: the linear colour times 2 pi.
+            UnityEngine.Rendering.GraphicsSettings.lightsUseLinearIntensity = true;
+            TetProbe.Light linear = LightProbeBaker.ProbeLightOf(light).Value;
+            double[] expectLinear = { 2 * Math.PI * Math.Pow(0.555 / 1.055, 2.4), 2 * Math.PI * Math.Pow(0.305 / 1.055, 2.4), 2 * Math.PI };
+            double gammaWorst = 0, linearWorst = 0;
+            float[] gammaRgb = { gamma.Color.x, gamma.Color.y, gamma.Color.z }, linearRgb = { linear.Color.x, linear.Color.y, linear.Color.z };
+            for (int c = 0; c < 3; ++c)
+            {
+                gammaWorst = Math.Max(gammaWorst, Math.Abs(gammaRgb[c] * gamma.Intensity / expectGamma[c] - 1));
+                linearWorst = Math.Max(linearWorst, Math.Abs(linearRgb[c] * linear.Intensity / expectLinear[c] - 1));
+            }
+            Check(gammaWorst < 1e-6, "lightsUseLinearIntensity off: (colour * intensity).linear, times pi (worst " + gammaWorst + ")");
+            Check(linearWorst < 1e-6, "lightsUseLinearIntensity on: colour.linear * intensity, times pi (worst " + linearWorst + ")");
+        }
+        finally
+        {
+            UnityEngine.Rendering.GraphicsSettings.lightsUseLinearIntensity = linearIntensity;
+        }
     }
 
     static void Invoke(object target, string method)
@@ -237,7 +350,7 @@ static class UnityTests
     {
         string scratch = args.Length > 0 ? args[0] : Path.GetTempPath();
         Directory.CreateDirectory(scratch);
-        foreach (Action test in new Action[] { Conversions, () => BakeAndLight(scratch) })
+        foreach (Action test in new Action[] { Conversions, LightConversion, () => BakeAndLight(scratch) })
         {
             try
             {

@@ -28,6 +28,12 @@ static class VersionTests
             Tests.Throws<DllNotFoundException>(() => new Scene(), "a missing library says which plugin to put where",
                                                e => e.Message.Contains("'tetprobe'") && e.InnerException != null);
 
+            // A library named tetprobe without tp_version (an old release or a foreign library) is refused as another release.
+            NativeProxy.VersionSource = () => { throw new EntryPointNotFoundException("tp_version"); };
+            Tests.Throws<TetProbeException>(() => new Scene(), "a library without tp_version is a plugin of another release",
+                                            e => e.Status == TetProbeStatus.Version && e.Message.Contains("tp_version") &&
+                                                 e.Message.Contains("same release") && e.InnerException is EntryPointNotFoundException);
+
             NativeProxy.VersionSource = () => (0u << 16) | (5u << 8) | 9u;
             using (ProbeStore store = ProbeStore.Build(new[] { new Vector3(0, 0, 0) }, null))
                 Tests.Check(store.Info.Probes == 1, "another patch of 0.5 is accepted");

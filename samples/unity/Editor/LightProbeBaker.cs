@@ -1,6 +1,7 @@
 // Editor: bakes the open scene's LightProbeGroup positions with tetprobe and saves the store next to the scene as a
-// .bytes TextAsset for TetProbeLighting. The tetprobe scene is made of the scene's MeshFilters (albedo from the
-// material's colour, emission where _EMISSION is on), its Lights and RenderSettings.ambientProbe as the sky.
+// .bytes TextAsset for TetProbeLighting. The tetprobe scene is made of the scene's static MeshFilters (Contribute GI;
+// albedo from the material's colour, emission where _EMISSION is on), its Baked and Mixed Lights and
+// RenderSettings.ambientProbe as the sky: what Unity's own probe bake sees.
 #if UNITY_EDITOR
 using System;
 using System.Collections.Generic;
@@ -62,8 +63,8 @@ public static class LightProbeBaker
         return positions.ToArray();
     }
 
-    /// <summary>The open scene as a tetprobe scene. Unity's light intensity I (and ShadeSH9) is exit radiance of a white
-    /// Lambertian surface, so our irradiance-based intensities are pi * I; colours go to linear space.</summary>
+    /// <summary>The open scene as a tetprobe scene: the meshes that contribute to GI (dynamic objects neither occlude
+    /// nor bounce in Unity's bake), the lights ProbeLightOf keeps and the ambient probe as the sky.</summary>
     public static ProbeScene FromOpenScene()
     {
         var scene = new ProbeScene();
@@ -71,28 +72,56 @@ public static class LightProbeBaker
         {
             var renderer = filter.GetComponent<MeshRenderer>();
             if (filter.sharedMesh == null || renderer == null) continue;
+            if ((GameObjectUtility.GetStaticEditorFlags(filter.gameObject) & StaticEditorFlags.ContributeGI) == 0) continue;
             Vector3[] vertices = filter.sharedMesh.vertices;
             for (int i = 0; i < vertices.Length; ++i) vertices[i] = filter.transform.TransformPoint(vertices[i]);
             scene.AddMesh(vertices, filter.sharedMesh.triangles, MaterialOf(renderer.sharedMaterial));
         }
         foreach (UnityEngine.Light light in UnityEngine.Object.FindObjectsOfType<UnityEngine.Light>())
         {
-            if (!light.enabled) continue;
-            Color c = light.color.linear;
-            var color = new Vector3(c.r, c.g, c.b);
-            float intensity = (float)Math.PI * light.intensity;
-            LightMode mode = light.lightmapBakeType == LightmapBakeType.Realtime ? LightMode.Realtime : LightMode.Baked;
-            bool shadows = light.shadows != LightShadows.None;
-            if (light.type == UnityEngine.LightType.Directional)
-                scene.AddLight(ProbeLight.Directional(light.transform.forward, color, intensity, mode, shadows));
-            else if (light.type == UnityEngine.LightType.Point)
-                scene.AddLight(ProbeLight.Point(light.transform.position, color, intensity, light.range, mode, shadows));
-            else if (light.type == UnityEngine.LightType.Spot)
-                scene.AddLight(ProbeLight.Spot(light.transform.position, light.transform.forward, color, intensity, light.range,
-                                               light.innerSpotAngle, light.spotAngle, mode, shadows));
+            ProbeLight? converted = ProbeLightOf(light);
+            if (converted.HasValue) scene.AddLight(converted.Value);
         }
         scene.SetSky(UnitySphericalHarmonics.FromUnity(RenderSettings.ambientProbe));
         return scene;
+    }
+
+    /// <summary>What Unity's probes hold of a light, as a tetprobe light (null: nothing). Baked lights: direct and
+    /// bounced light. Mixed lights: bounced light only, in every Lighting Mode (Unity's MixedLightingMode table: light
+    /// probes hold no direct light of Mixed lights in Baked Indirect, Shadowmask or Subtractive; dynamic objects get it in
+    /// real time). Realtime lights: nothing, Unity's baked GI ignores them. Unity's intensity I is the exit radiance of a
+    /// white Lambertian surface, so our irradiance-based intensity is pi I; the colour goes to linear space as Unity
+    /// does it: colour times intensity together when GraphicsSettings.lightsUseLinearIntensity is off (the built-in
+    /// pipeline's default), else the linear colour times the intensity.</summary>
+    public static ProbeLight? ProbeLightOf(UnityEngine.Light light)
+    {
+        if (!light.enabled) return null;
+        LightMode mode;
+        if (light.lightmapBakeType == LightmapBakeType.Baked) mode = LightMode.Baked;
+        else if (light.lightmapBakeType == LightmapBakeType.Mixed) mode = LightMode.Realtime;
+        else return null;
+        Color c;
+        float intensity;
+        if (UnityEngine.Rendering.GraphicsSettings.lightsUseLinearIntensity)
+        {
+            c = light.color.linear;
+            intensity = (float)Math.PI * light.intensity;
+        }
+        else
+        {
+            c = (light.color * light.intensity).linear;
+            intensity = (float)Math.PI;
+        }
+        var color = new Vector3(c.r, c.g, c.b);
+        bool shadows = light.shadows != LightShadows.None;
+        if (light.type == UnityEngine.LightType.Directional)
+            return ProbeLight.Directional(light.transform.forward, color, intensity, mode, shadows);
+        if (light.type == UnityEngine.LightType.Point)
+            return ProbeLight.Point(light.transform.position, color, intensity, light.range, mode, shadows);
+        if (light.type == UnityEngine.LightType.Spot)
+            return ProbeLight.Spot(light.transform.position, light.transform.forward, color, intensity, light.range,
+                                   light.innerSpotAngle, light.spotAngle, mode, shadows);
+        return null;  // area lights: not in a tetprobe scene
     }
 
     static ProbeMaterial MaterialOf(UnityEngine.Material material)

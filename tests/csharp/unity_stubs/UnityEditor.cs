@@ -24,6 +24,26 @@ namespace UnityEditor
         public static bool DisplayDialog(string title, string message, string ok) { return true; }
     }
 
+    /// <summary>Which of Unity's precomputations include a GameObject (only the flags the samples read).</summary>
+    [Flags]
+    public enum StaticEditorFlags
+    {
+        ContributeGI = 1,
+        BatchingStatic = 4,
+    }
+
+    public static class GameObjectUtility
+    {
+        static readonly Dictionary<UnityEngine.GameObject, StaticEditorFlags> Flags =
+            new Dictionary<UnityEngine.GameObject, StaticEditorFlags>();
+        public static StaticEditorFlags GetStaticEditorFlags(UnityEngine.GameObject go)
+        {
+            StaticEditorFlags flags;
+            return Flags.TryGetValue(go, out flags) ? flags : 0;
+        }
+        public static void SetStaticEditorFlags(UnityEngine.GameObject go, StaticEditorFlags flags) { Flags[go] = flags; }
+    }
+
     public static class AssetDatabase
     {
         public static readonly List<string> Imported = new List<string>();

@@ -116,7 +116,12 @@ namespace UnityEngine
         public Rendering.LightProbeUsage lightProbeUsage = Rendering.LightProbeUsage.BlendProbes;
         MaterialPropertyBlock block = new MaterialPropertyBlock();
         public void GetPropertyBlock(MaterialPropertyBlock into) { into.CopyFrom(block); }
-        public void SetPropertyBlock(MaterialPropertyBlock from) { block = new MaterialPropertyBlock(); block.CopyFrom(from); }
+        /// <summary>As Unity's: null clears the renderer's block.</summary>
+        public void SetPropertyBlock(MaterialPropertyBlock from)
+        {
+            block = new MaterialPropertyBlock();
+            if (from != null) block.CopyFrom(from);
+        }
     }
 
     public class MeshRenderer : Renderer { }

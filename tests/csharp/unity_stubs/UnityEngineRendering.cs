@@ -10,6 +10,12 @@ namespace UnityEngine.Rendering
 {
     public enum LightProbeUsage { Off = 0, BlendProbes = 1, UseProxyVolume = 2, CustomProvided = 4 }
 
+    public static class GraphicsSettings
+    {
+        /// <summary>Off by default in the built-in pipeline: colour times intensity is linearised together.</summary>
+        public static bool lightsUseLinearIntensity { get; set; }
+    }
+
     public struct SphericalHarmonicsL2
     {
         // Read and written through a pointer to shr0 (the 27 floats are sequential), hence "never used".
