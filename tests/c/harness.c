@@ -610,7 +610,7 @@ static void test_store_info_and_struct_size(void) {
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
     EXPECT_OK(tp_store_blob(store, &blob, &size));
-    CHECK(info.format_version == 3);
+    CHECK(info.format_version == 4);
     CHECK(info.dimension == 3);
     CHECK(info.input_probes == CLOUD + 3);
     CHECK(info.probes == CLOUD);
@@ -688,7 +688,7 @@ static void test_store_info_and_struct_size(void) {
 /* The blob checksum of store_format.h, to forge a consistent blob: FNV-1a 64 over little-endian 64-bit
    words, each step followed by hash ^= hash >> 29 (seeded with the size, the last word zero-padded),
    the checksum field read as zero. */
-#define CHECKSUM_OFFSET 104 /* format 3: after magic, 9 uint32 (axis included), grid, origin, bounds */
+#define CHECKSUM_OFFSET 104 /* formats 3 and 4: after magic, 9 uint32 (axis included), grid, origin, bounds */
 static void repair_checksum(unsigned char* data, size_t size) {
     uint64_t hash = 14695981039346656037ull ^ (uint64_t)size;
     size_t i, k;
@@ -1022,7 +1022,7 @@ static void test_compact_layout(void) {
         }
         fast_info = info_of(fast);
         compact_info = info_of(compact);
-        CHECK(fast_info.format_version == 3 && compact_info.format_version == 3);
+        CHECK(fast_info.format_version == 4 && compact_info.format_version == 4);
         CHECK(fast_info.flags == extra);
         CHECK(compact_info.flags == (extra | TP_BUILD_COMPACT));
         CHECK(compact_info.index_bits == fast_info.index_bits);

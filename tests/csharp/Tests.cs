@@ -280,7 +280,7 @@ static class Tests
         using (ProbeStore compact = ProbeStore.Build(positions, sh, true, true))
         {
             ProbeStoreInfo fi = fast.Info, ci = compact.Info;
-            Check(fi.FormatVersion == 3 && ci.FormatVersion == 3, "format version 3");
+            Check(fi.FormatVersion == 4 && ci.FormatVersion == 4, "format version 4");
             Check(!fi.Compact && ci.Compact && (ci.Flags & 4u) != 0 && (fi.Flags & 4u) == 0, "compact flag in info");
             Check(ci.Bytes < fi.Bytes, "compact blob is smaller (" + ci.Bytes + " < " + fi.Bytes + ")");
             Check(ci.Cells == fi.Cells && ci.InnerCells == fi.InnerCells, "same cells in both layouts");

@@ -305,7 +305,7 @@ def test_context_manager_and_repr():
     assert isinstance(tetprobe.Error(1, "x"), RuntimeError)
 
 
-# ---- format 3: layouts, batch options, version
+# ---- format 4: layouts, batch options, version
 
 def dense_weights(indices, weights, probes):
     """Per-query weights as a dense [M, probes] matrix (slot order and repeated unused slots drop out)."""
@@ -328,7 +328,7 @@ def test_compact_layout_answers_like_the_fast_layout(index32):
     assert not fast_info["compact"] and compact_info["compact"]
     assert compact_info["flags"] & tetprobe._native.BUILD_COMPACT
     assert not fast_info["flags"] & tetprobe._native.BUILD_COMPACT
-    assert fast_info["format_version"] == 3 and compact_info["format_version"] == 3
+    assert fast_info["format_version"] == 4 and compact_info["format_version"] == 4
     assert compact_info["bytes"] < fast_info["bytes"]
     for key in ("probes", "cells", "inner_cells", "outer_cells", "index_bits"):
         assert compact_info[key] == fast_info[key], key

@@ -86,7 +86,7 @@ class Store(NativeHandle):
     def info(self):
         """Counts and layout: probes, cells, inner_cells, outer_cells, merged_probes, index_bits, bytes, ...
 
-        format_version is the blob's store format (3); flags are the TP_BUILD_* bits of the blob
+        format_version is the blob's store format (4); flags are the TP_BUILD_* bits of the blob
         (BUILD_INDEX32 whenever it uses 32-bit indices); compact is True for the compact layout,
         False for the fast one; bytes is the blob's size."""
         info = _native.StoreInfo()
