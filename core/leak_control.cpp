@@ -23,34 +23,44 @@ double smoothstep(double x) {
 }  // namespace
 
 void weigh_by_visibility(const Store::Impl& s, Location& loc) {
-    double factor[4] = {1, 1, 1, 1};
+    // Per slot: the weight of its blocked partners in the cell, and their ramps (oriented away from
+    // the slot's probe) summed with those weights.
+    double behind[4] = {0, 0, 0, 0}, ramp_start[4] = {0, 0, 0, 0}, ramp_end[4] = {0, 0, 0, 0};
     bool blocked = false;
     for (int i = 0; i < 4; ++i) {
         for (int j = i + 1; j < 4; ++j) {
             const uint32_t pi = loc.probes[i], pj = loc.probes[j];
             if (pi == pj) continue;  // unused slots repeat slot 0
-            const bool i_low = pi < pj;
-            const LeakEdge* edge = blocked_edge(s, i_low ? pi : pj, i_low ? pj : pi);
+            const int low = pi < pj ? i : j, high = pi < pj ? j : i;
+            const LeakEdge* edge = blocked_edge(s, loc.probes[low], loc.probes[high]);
             if (!edge) continue;
             blocked = true;
-            const int low = i_low ? i : j, high = i_low ? j : i;
-            const double wa = loc.weights[low], wb = loc.weights[high];
-            // Where the query projects onto the edge, 0 at the low probe (0 when both weights vanish:
-            // their product with any factor is 0 then).
-            const double t = wa + wb > 0 ? wb / (wa + wb) : 0.0;
-            const double high_visible = smoothstep((t - edge->start) / (double(edge->end) - edge->start));
-            factor[high] *= high_visible;
-            factor[low] *= 1.0 - high_visible;
+            const double w_low = loc.weights[low], w_high = loc.weights[high];
+            behind[low] += w_high;
+            ramp_start[low] += w_high * edge->start;
+            ramp_end[low] += w_high * edge->end;
+            behind[high] += w_low;
+            ramp_start[high] += w_low * (1.0 - edge->end);
+            ramp_end[high] += w_low * (1.0 - edge->start);
         }
     }
     if (!blocked) return;
-    double scaled[4], total = 0, scaled_total = 0;
+    double total = 0;
+    for (int k = 0; k < 4; ++k) total += loc.weights[k];
+    if (!(total > 0)) return;  // weights of a validated store sum to 1; kept for safety
+    double scaled[4], scaled_total = 0;
     for (int k = 0; k < 4; ++k) {
-        scaled[k] = double(loc.weights[k]) * (factor[k] + kLeakFloor);
-        total += loc.weights[k];
+        double visible = 1;
+        if (behind[k] > 0) {
+            // How far the query has gone towards the probes this one cannot see (0 at this probe, 1 at
+            // them), against the weighted ramp: past it, the query is on their side of the wall.
+            const double t = behind[k] / total;
+            const double start = ramp_start[k] / behind[k], end = ramp_end[k] / behind[k];
+            visible = 1.0 - smoothstep((t - start) / (end - start));
+        }
+        scaled[k] = double(loc.weights[k]) * (visible + kLeakFloor);
         scaled_total += scaled[k];
     }
-    if (!(scaled_total > 0)) return;  // weights of a validated store sum to 1; kept for safety
     // Divided last, so that a query at a probe (one scaled weight equal to the total) gets exactly 1.
     for (int k = 0; k < 4; ++k) loc.weights[k] = float(scaled[k] * total / scaled_total);
 }

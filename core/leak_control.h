@@ -2,14 +2,17 @@
 // crosses the edge between them, found when the store was built with its scene) weighs down the
 // probe on the far side of the wall from the query.
 //
-// Why this shape: the factor of a blocked pair (a, b) depends only on where the query projects onto
-// the edge a-b in the cell's own barycentrics, t = w_b / (w_a + w_b), through a smoothstep over the
-// stored ramp [start, end] (the wall crossing, widened). On a facet that does not hold b, w_b = 0, so
-// t = 0 and a keeps its factor 1 (b's weight is 0 anyway); the neighbour across that facet, without
-// b, sees the same weights. So the weights stay continuous across every facet, between a blocked
-// cell and an unblocked one too; cells without a blocked pair are not touched at all (bit for bit);
-// a query at a probe keeps weight exactly 1 there. The data is a few bytes per blocked edge, the cost
-// a short list scan per probe of the cell.
+// Why this shape: each probe a of the cell gets a visibility from t_a, the share of the query's
+// weights held by the probes a cannot see (0 at a, 1 on the far side), through a smoothstep over
+// their ramps [start, end] (the wall crossing of each blocked edge, widened, averaged with the same
+// weights). On an edge this is exactly where the query crosses the wall; inside a cell cut by a wall
+// it measures how far the query is from a's side. A probe whose blocked partners all have zero
+// weight keeps visibility 1, and the blocked partners' weights vanish on every facet that does not
+// hold them, so the weights stay continuous across every facet, between a blocked cell and an
+// unblocked one too; cells without a blocked pair are not touched at all (bit for bit); a query at a
+// probe keeps weight exactly 1 there. The data is a few bytes per blocked edge, the cost a short list
+// scan per probe of the cell. (Per-probe depth maps, as DDGI keeps, would cost a store many times
+// this size and change every cell's answers, walls or not.)
 #pragma once
 
 #include "core/store_impl.h"
@@ -21,8 +24,7 @@ namespace tetprobe {
 // back towards the plain barycentric weights, continuously).
 constexpr double kLeakFloor = 1e-3;
 
-// Multiplies each probe's weight by its visibility from the query (the product over its blocked pairs
-// in the cell) and renormalises to the same sum. Leaves loc untouched when no pair of its probes is
+// Multiplies each probe's weight by its visibility from the query and renormalises to the same sum. Leaves loc untouched when no pair of its probes is
 // blocked. The store must have leak control (leak_offsets non-null).
 void weigh_by_visibility(const Store::Impl& store, Location& loc);
 
