@@ -422,12 +422,12 @@ def test_outside_batch_names_the_first_outside_query():
             assert re.search(r"\b37\b", raised.value.message), raised.value.message
 
 
-def test_format_2_blob_is_refused_with_a_version_error():
+def test_older_format_blobs_are_refused_with_a_version_error():
     positions, sh = random_set(50, 241)
     for compact in (False, True):
         blob = bytearray(Store.build(positions, sh, compact=compact).to_bytes())
-        assert struct.unpack_from("<I", blob, 8)[0] == 3
-        for version in (2, 1, 4, 99):
+        assert struct.unpack_from("<I", blob, 8)[0] == 4
+        for version in (3, 2, 1, 5, 99):
             old = bytearray(blob)
             struct.pack_into("<I", old, 8, version)  # nothing else fixed: not even the checksum
             with pytest.raises(Error) as raised:

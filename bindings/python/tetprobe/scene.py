@@ -12,14 +12,15 @@ from ._arrays import Progress, rows, vector
 from ._native import SH_FLOATS, check, lib
 from .errors import Error, Status
 
-_MODES = {"baked": _native.LIGHT_MODE_BAKED, "realtime": _native.LIGHT_MODE_REALTIME}
+_MODES = {"baked": _native.LIGHT_MODE_BAKED, "realtime": _native.LIGHT_MODE_REALTIME,
+          "mixed": _native.LIGHT_MODE_MIXED}
 
 
 def _mode(mode):
     try:
         return _MODES[mode]
     except KeyError:
-        raise Error(Status.INVALID_ARGUMENT, "light mode must be 'baked' or 'realtime' (got %r)" % (mode,))
+        raise Error(Status.INVALID_ARGUMENT, "light mode must be 'baked', 'realtime' or 'mixed' (got %r)" % (mode,))
 
 
 class Scene(NativeHandle):
@@ -172,3 +173,19 @@ def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, pro
     result["shadows"] = bool(plan.shadows)
     result["text"] = text.value.decode("utf-8", "replace")
     return result
+
+
+def bake_occlusion(scene, positions=None, progress=None):
+    """Occlusion probes at positions[N, 3] (None = the scene's probes) -> (occlusion[N, 4] uint8, mixed_lights).
+
+    Byte i is 255 x the visibility of the scene's i-th mixed light from the position (one shadow ray:
+    0 or 255), 255 for channels without a light; pass it to Store.build(..., occlusion=...)."""
+    points, stride = _positions(scene, positions)
+    options, callback = _options(1, 0, 0, 0, progress)
+    out = np.empty((points.shape[0], 4), dtype=np.uint8)
+    lights = ctypes.c_uint32()
+    status = lib.tp_bake_occlusion(scene._live(), points, stride, points.shape[0], ctypes.byref(options),
+                                   out, 4, ctypes.byref(lights))
+    callback.reraise()
+    check(status)
+    return out, lights.value

@@ -27,14 +27,17 @@ class Store(NativeHandle):
 
     @classmethod
     def build(cls, positions, sh=None, *, compact=False, extrapolate=True, index32=False, merge_tolerance=None,
-              flat_tolerance=None, progress=None):
+              flat_tolerance=None, progress=None, scene=None, occlusion=None, occlusion_lights=None):
         """Builds a store from positions[N, 3] (float32, world units) and sh[N, 27] (None = zeros).
 
         compact=True writes the compact layout (the smallest blob: no neighbour section, rebuilt when
         the store is loaded); its answers are the fast layout's (same cells, weights within 1e-6).
         extrapolate=False builds no outer cells (queries outside the hull raise Error(OUTSIDE));
         index32 forces 32-bit indices; tolerances are fractions of the set's diagonal (None = the
-        library's default); progress(fraction, stage) may return True to cancel."""
+        library's default); progress(fraction, stage) may return True to cancel. scene (a Scene) turns
+        on leak control: probe pairs of a cell that cannot see each other are stored and queries weigh
+        down the probe behind the wall. occlusion[N, 4] uint8 (bake_occlusion's output) stores occlusion
+        probes of occlusion_lights mixed lights (the count bake_occlusion returns; None = all 4 channels)."""
         points, point_stride, _ = rows(positions, 3, "positions")
         coefficients, sh_stride = None, 0
         if sh is not None:
@@ -51,6 +54,17 @@ class Store(NativeHandle):
             options.merge_tolerance = merge_tolerance
         if flat_tolerance is not None:
             options.flat_tolerance = flat_tolerance
+        if scene is not None:
+            options.scene = scene._live()
+        occlusion_bytes = None
+        if occlusion is not None:
+            occlusion_bytes = np.ascontiguousarray(occlusion, dtype=np.uint8)
+            if occlusion_bytes.shape != (points.shape[0], 4):
+                raise Error(Status.INVALID_ARGUMENT, "occlusion must be [%d, 4] uint8 (got %s)" %
+                            (points.shape[0], occlusion_bytes.shape))
+            options.occlusion = occlusion_bytes.ctypes.data
+            options.occlusion_stride = 4
+            options.occlusion_lights = 4 if occlusion_lights is None else int(occlusion_lights)
         callback = Progress(progress)
         options.progress = callback.function
         handle = ctypes.c_void_p()
@@ -110,6 +124,8 @@ class Store(NativeHandle):
             "origin": tuple(info.origin),
             "bounds_min": tuple(info.bounds_min),
             "bounds_max": tuple(info.bounds_max),
+            "occlusion_lights": info.occlusion_lights,
+            "leak_edges": info.leak_edges,
         }
 
     def probe_sh(self, probe):
@@ -143,7 +159,7 @@ class Store(NativeHandle):
         options.flags = _native.BATCH_CHAIN_HINTS if chain_hints else 0
         return options
 
-    def interpolate(self, points, hints=None, threads=1, chain_hints=False):
+    def interpolate(self, points, hints=None, threads=1, chain_hints=False, occlusion=False):
         """Interpolated SH at points[M, 3] (float32, world units) -> (sh[M, 27] float32, hints[M] int32).
 
         A point of shape [3] gives (sh[27], hint). hints[M] are the cells of the previous queries
@@ -151,12 +167,21 @@ class Store(NativeHandle):
         the library may split the batch over (0 or 1 = the calling thread). chain_hints=True (only
         with hints=None) starts each query from the previous query's cell, for points given in a
         spatially coherent order; the library then reports no cells and the returned hints are None.
-        Points outside a store built with extrapolate=False raise Error(OUTSIDE) naming the first."""
+        Points outside a store built with extrapolate=False raise Error(OUTSIDE) naming the first.
+        occlusion=True returns (sh, occlusion[M, 4] float32 in [0, 1], hints): the mixed lights'
+        interpolated visibility (1 for channels without a light)."""
         data, stride, single = rows(points, 3, "points")
         count = data.shape[0]
         cells = self._hints(hints, count, chain_hints)
         options = self._batch_options(threads, chain_hints)
         out = np.empty((count, SH_FLOATS), dtype=np.float32)
+        if occlusion:
+            visible = np.empty((count, 4), dtype=np.float32)
+            check(lib.tp_store_interpolate_occlusion_batch(self._live(), count, data, stride, cells, 4, out,
+                                                           SH_FLOATS * 4, visible, 16, ctypes.byref(options)))
+            if single:
+                return out[0], visible[0], (None if cells is None else int(cells[0]))
+            return out, visible, cells
         check(lib.tp_store_interpolate_batch(self._live(), count, data, stride, cells, 4,
                                              out, SH_FLOATS * 4, ctypes.byref(options)))
         if single:
