@@ -1,5 +1,7 @@
 #include "core/leak_control.h"
 
+#include <algorithm>
+
 namespace tetprobe {
 
 namespace {
@@ -20,9 +22,38 @@ double smoothstep(double x) {
     return x * x * (3 - 2 * x);
 }
 
+template <class Index>
+void mark_cells(Store::Impl& s) {
+    const auto* records = static_cast<const CellRecord<Index>*>(s.cells);
+    uint8_t* blocked = s.leak_cells.get();
+    for (uint32_t c = 0; c < s.cell_count; ++c) {
+        uint32_t probes[4];
+        int used = 0;
+        for (int k = 0; k < 4; ++k) {
+            const uint32_t v = records[c].vertices[k];
+            if (v < s.probe_count) probes[used++] = v;  // reserved values (outer, none) are above any probe
+        }
+        blocked[c] = 0;
+        for (int i = 0; i < used; ++i)
+            for (int j = i + 1; j < used; ++j)
+                if (probes[i] != probes[j] &&
+                    blocked_edge(s, std::min(probes[i], probes[j]), std::max(probes[i], probes[j])))
+                    blocked[c] = 1;
+    }
+}
+
 }  // namespace
 
+void mark_blocked_cells(Store::Impl& s) {
+    s.leak_cells = aligned_bytes(s.cell_count);
+    if (s.index32)
+        mark_cells<uint32_t>(s);
+    else
+        mark_cells<uint16_t>(s);
+}
+
 void weigh_by_visibility(const Store::Impl& s, Location& loc) {
+    if (!s.leak_cells.get()[loc.cell]) return;
     // Per slot: the weight of its blocked partners in the cell, and their ramps (oriented away from
     // the slot's probe) summed with those weights.
     double behind[4] = {0, 0, 0, 0}, ramp_start[4] = {0, 0, 0, 0}, ramp_end[4] = {0, 0, 0, 0};

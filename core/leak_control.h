@@ -24,6 +24,10 @@ namespace tetprobe {
 // back towards the plain barycentric weights, continuously).
 constexpr double kLeakFloor = 1e-3;
 
+// Fills store.leak_cells: which cells hold a blocked pair (so that a query in any other cell costs one
+// byte read). Called once when a store with leak control is loaded, after its cell records.
+void mark_blocked_cells(Store::Impl& store);
+
 // Multiplies each probe's weight by its visibility from the query and renormalises to the same sum. Leaves loc untouched when no pair of its probes is
 // blocked. The store must have leak control (leak_offsets non-null).
 void weigh_by_visibility(const Store::Impl& store, Location& loc);

@@ -91,6 +91,7 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     else
         set_cell_records<uint16_t>(s, section(kSectionCells));
     validate_cell_records(s);
+    if (s.leak_offsets) mark_blocked_cells(s);
     return store;
 }
 

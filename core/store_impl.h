@@ -53,6 +53,7 @@ struct Store::Impl {
     const uint8_t* occlusion = nullptr;      // 4 per probe
     const uint32_t* leak_offsets = nullptr;  // probe_count + 1; non-null = leak control on
     const LeakEdge* leak_edges = nullptr;
+    AlignedBytes leak_cells;                 // per cell 1 if two of its probes cannot see each other (built on load)
 };
 
 }  // namespace tetprobe

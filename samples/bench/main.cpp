@@ -7,6 +7,7 @@
 
 int main(int argc, char** argv) {
     const char* which = argc > 1 ? argv[1] : "all";
+    if (!std::strcmp(which, "leak")) return run_leak_bench(argc, argv);  // not part of "all": bench_leak.cpp
     const bool store = !std::strcmp(which, "store") || !std::strcmp(which, "all");
     const bool bake = !std::strcmp(which, "bake") || !std::strcmp(which, "all");
     if (!store && !bake) {
