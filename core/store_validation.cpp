@@ -164,6 +164,7 @@ void check_scene_data(const uint8_t* data, const StoreHeader& h, const SectionEn
     if (offsets[h.probe_count] != h.leak_edge_count) reject(at("leak_offsets", h.probe_count) + " is not leak_edge_count");
     for (uint64_t a = 0; a < h.probe_count; ++a) {
         if (offsets[a + 1] < offsets[a]) reject(at("leak_offsets", a + 1) + " decreases");
+        if (offsets[a + 1] > h.leak_edge_count) reject(at("leak_offsets", a + 1) + " is beyond leak_edge_count");
         for (uint64_t i = offsets[a]; i < offsets[a + 1]; ++i) {
             const LeakEdge& e = edges[i];
             if (e.partner <= a || e.partner >= h.probe_count)

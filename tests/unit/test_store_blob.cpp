@@ -485,6 +485,8 @@ TEST_CASE("the loader names what is wrong", "[store_blob]") {
         expect(with(offsets + 8, &zero, 4), Status::invalid_blob, "leak_offsets[2] decreases");
         expect(with(offsets + 4, &two, 4), Status::invalid_blob, "leak_edges[1] is out of order");
         expect(with(offsets + 16, &one, 4), Status::invalid_blob, "leak_offsets[4] is not leak_edge_count");
+        const uint32_t far = 100;  // an early list running past the edges, the later offsets back in range
+        expect(with(offsets + 4, &far, 4), Status::invalid_blob, "leak_offsets[1] is beyond leak_edge_count");
         expect(with(edges, &zero, 4), Status::invalid_blob, "leak_edges[0] names partner 0");
         expect(with(edges, &four, 4), Status::invalid_blob, "leak_edges[0] names partner 4");
         const float backwards = 0.75f, nan = std::nanf("");
