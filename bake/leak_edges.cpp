@@ -19,7 +19,11 @@ double first_hit(const RayCaster& caster, const float from[3], const float to[3]
         length += d[k] * d[k];
     }
     length = std::sqrt(length);
-    if (!(length > 0)) return -1;
+    // Embree's rays must start within +-1.8e18 and have a finite reach (it asserts otherwise): a pair
+    // beyond that range is not tested (and stays unblocked).
+    if (!(length > 0) || !(length < kLargestRayCoordinate)) return -1;
+    for (int k = 0; k < 3; ++k)
+        if (!(std::fabs(from[k]) < kLargestRayCoordinate)) return -1;
     const float direction[3] = {float(d[0] / length), float(d[1] / length), float(d[2] / length)};
     RayHit hit;
     if (!caster.intersect(from, direction, 0.0f, float(length), &hit)) return -1;

@@ -35,7 +35,12 @@ std::vector<uint8_t> bake_occlusion(const Scene& scene, const std::vector<float>
             settings.progress(settings.progress_user, float(i) / float(count), "occlusion") != 0)
             throw Error(Status::cancelled, "occlusion bake cancelled");
         float probe[3];
-        for (int k = 0; k < 3; ++k) probe[k] = float(double(positions[3 * i + size_t(k)]) - origin[k]);
+        bool in_range = true;
+        for (int k = 0; k < 3; ++k) {
+            probe[k] = float(double(positions[3 * i + size_t(k)]) - origin[k]);
+            in_range &= std::fabs(probe[k]) < kLargestRayCoordinate;
+        }
+        if (!in_range) continue;  // beyond what Embree traces: left unshadowed
         for (size_t l = 0; l < mixed.size(); ++l) {
             const Light& light = *mixed[l];
             if (!light.shadows) continue;
@@ -53,6 +58,7 @@ std::vector<uint8_t> bake_occlusion(const Scene& scene, const std::vector<float>
                 for (int k = 0; k < 3; ++k) to_light[k] = -light.direction[size_t(k)];
             }
             const float direction[3] = {float(to_light[0]), float(to_light[1]), float(to_light[2])};
+            if (light.positional() && !(distance < kLargestRayCoordinate)) continue;
             const float far = std::isinf(distance) ? std::numeric_limits<float>::infinity() : float(distance);
             if (caster.occluded(probe, direction, 0.0f, far, -1)) out[4 * i + l] = 0;
         }

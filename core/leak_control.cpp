@@ -87,7 +87,9 @@ void weigh_by_visibility(const Store::Impl& s, Location& loc) {
             // them), against the weighted ramp: past it, the query is on their side of the wall.
             const double t = behind[k] / total;
             const double start = ramp_start[k] / behind[k], end = ramp_end[k] / behind[k];
-            visible = 1.0 - smoothstep((t - start) / (end - start));
+            // Every ramp is wider than zero, but their average may round to none: a step then.
+            const double x = end > start ? (t - start) / (end - start) : (t > start ? 1.0 : 0.0);
+            visible = 1.0 - smoothstep(x);
         }
         scaled[k] = double(loc.weights[k]) * (visible + kLeakFloor);
         scaled_total += scaled[k];

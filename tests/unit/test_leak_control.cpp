@@ -274,3 +274,28 @@ TEST_CASE("leak: on the two-rooms scene the leak error along a path through the 
          << " blocked pairs)");
     CHECK(leak_error < 0.7 * plain_error);  // measured 0.43 -> 0.23
 }
+
+TEST_CASE("leak: ramps narrower than rounding (a valid blob's denormal ramp) still give finite weights", "[leak]") {
+    // Found by fuzzing: seen from the partner's side, the ramp [0, 1e-45] is [1 - 1e-45, 1] = [1, 1].
+    WallStores s = wall_stores();
+    for (LeakEdge& e : s.leak_data.leak_edges) {
+        e.start = 0.0f;
+        e.end = 1e-45f;
+    }
+    const std::unique_ptr<Store> store = load(s.leak_data);
+    std::mt19937 random(31);
+    std::uniform_real_distribution<float> u(-2.2f, 2.2f);
+    const std::vector<float> probes = lattice_probes();  // at a probe, its blocked partners see t = 1 exactly
+    for (size_t q = 0; q < 5000 + probes.size() / 3; ++q) {
+        float p[3] = {u(random), u(random), u(random)};
+        if (q >= 5000) std::copy_n(&probes[3 * (q - 5000)], 3, p);
+        const Location loc = store->locate(p, -1);
+        double sum = 0;
+        for (int k = 0; k < 4; ++k) {
+            REQUIRE(std::isfinite(loc.weights[k]));
+            REQUIRE(loc.weights[k] >= 0.0f);
+            sum += loc.weights[k];
+        }
+        REQUIRE(sum == Approx(1.0).margin(1e-5));
+    }
+}
