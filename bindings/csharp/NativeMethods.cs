@@ -17,6 +17,11 @@ namespace TetProbe
         public double flat_tolerance;
         public IntPtr progress;
         public IntPtr progress_user;
+        // Format 4 scene data (tp_build_options_init writes the whole struct, so the layout must match).
+        public IntPtr occlusion;
+        public UIntPtr occlusion_stride;
+        public uint occlusion_lights;
+        public IntPtr scene;
     }
 
     [StructLayout(LayoutKind.Sequential)]

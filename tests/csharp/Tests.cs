@@ -363,13 +363,16 @@ static class Tests
             Throws<ArgumentOutOfRangeException>(() => fast.Interpolate(many, null, chained, -1), "negative threads");
             Throws<ArgumentException>(() => fast.Weights(many, null, new uint[4], chainedWeights), "short probes array");
 
-            // A format-2 blob: only the version field changed (not even the checksum); refused as a version.
+            // Format-2 and format-3 blobs: only the version field changed (not even the checksum); refused as a version.
             byte[] blob = fast.Save();
-            Check(BitConverter.ToUInt32(blob, 8) == 3, "format version at byte 8");
-            var old = (byte[])blob.Clone();
-            old[8] = 2; old[9] = 0; old[10] = 0; old[11] = 0;
-            Throws<TetProbeException>(() => ProbeStore.Load(old), "format-2 blob",
-                                      e => e.Status == TetProbeStatus.Version && e.Message.ToLowerInvariant().Contains("rebuild"));
+            Check(BitConverter.ToUInt32(blob, 8) == 4, "format version at byte 8");
+            foreach (byte version in new byte[] { 2, 3 })
+            {
+                var old = (byte[])blob.Clone();
+                old[8] = version; old[9] = 0; old[10] = 0; old[11] = 0;
+                Throws<TetProbeException>(() => ProbeStore.Load(old), "format-" + version + " blob",
+                                          e => e.Status == TetProbeStatus.Version && e.Message.ToLowerInvariant().Contains("rebuild"));
+            }
         }
 
         using (ProbeStore closed = ProbeStore.Build(positions, sh, false))
