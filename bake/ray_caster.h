@@ -12,6 +12,9 @@
 
 namespace tetprobe {
 
+// Largest coordinate (and reach) of a ray Embree accepts (its FLT_LARGE is 1.844e18).
+constexpr double kLargestRayCoordinate = 1e18;
+
 struct RayHit {
     uint32_t mesh = 0;
     uint32_t triangle = 0;  // index among the mesh's kept triangles

@@ -130,6 +130,12 @@ uint32_t Scene::add_mesh(const float* vertices, size_t vertex_count, const uint3
     return mesh_index;
 }
 
+uint32_t Scene::mixed_light_count() const {
+    uint32_t count = 0;
+    for (const Light& light : lights_) count += light.mixed ? 1u : 0u;
+    return count;
+}
+
 uint32_t Scene::add_light(const tp_light& in, const std::string& label) {
     const std::string where = label.empty() ? "light " + std::to_string(lights_.size()) : label;
     if (in.struct_size < sizeof(tp_light))
@@ -141,9 +147,13 @@ uint32_t Scene::add_light(const tp_light& in, const std::string& label) {
         case TP_LIGHT_SPOT: light.type = LightType::spot; break;
         default: scene_error(where, "unknown type " + std::to_string(in.type));
     }
-    if (in.mode != TP_LIGHT_MODE_BAKED && in.mode != TP_LIGHT_MODE_REALTIME)
+    if (in.mode != TP_LIGHT_MODE_BAKED && in.mode != TP_LIGHT_MODE_REALTIME && in.mode != TP_LIGHT_MODE_MIXED)
         scene_error(where, "unknown mode " + std::to_string(in.mode));
-    light.realtime = in.mode == TP_LIGHT_MODE_REALTIME;
+    // A mixed light is baked as a realtime one (bounced light only) and gets an occlusion channel.
+    light.mixed = in.mode == TP_LIGHT_MODE_MIXED;
+    light.realtime = in.mode != TP_LIGHT_MODE_BAKED;
+    if (light.mixed && mixed_light_count() >= kMaxMixedLights)
+        scene_error(where, "a fifth mixed light: occlusion probes hold at most 4 (make it baked or realtime)");
     light.shadows = in.shadows != 0;
     if (!finite3(in.color) || in.color[0] < 0 || in.color[1] < 0 || in.color[2] < 0)
         scene_error(where, "colour " + triple(in.color) + " is negative or not finite");

@@ -13,6 +13,9 @@
 
 namespace tetprobe {
 
+// Occlusion probes have one byte per mixed light, four a probe.
+constexpr uint32_t kMaxMixedLights = 4;
+
 struct Material {
     std::array<float, 3> albedo{{kDefaultAlbedo, kDefaultAlbedo, kDefaultAlbedo}};  // Lambertian reflectance in [0, 1]
     std::array<float, 3> emission{{0.0f, 0.0f, 0.0f}};  // emitted radiance, >= 0
@@ -40,7 +43,8 @@ enum class LightType { directional, point, spot };
 
 struct Light {
     LightType type = LightType::point;
-    bool realtime = false;  // only its bounced light is baked
+    bool realtime = false;  // only its bounced light is baked (mixed lights too)
+    bool mixed = false;     // realtime direct light with baked shadows: one occlusion channel
     bool shadows = true;
     std::array<float, 3> color{{1, 1, 1}};
     float intensity = 1.0f;                     // directional: irradiance; point, spot: radiant intensity
@@ -83,6 +87,7 @@ public:
     const std::vector<float>& probes() const { return probes_; }
     size_t probe_count() const { return probes_.size() / 3; }
     uint32_t dropped_triangles() const;
+    uint32_t mixed_light_count() const;
     // True when there is nothing that emits light or occludes it: no mesh, no light, no sky.
     bool empty() const { return meshes_.empty() && lights_.empty() && sky_.kind == SkyKind::none; }
 

@@ -4,7 +4,7 @@
 //                 "vertices": [[x,y,z], ...] or [x,y,z,...] and "indices": [[a,b,c], ...] or [a,b,c,...],
 //                 "material": {"albedo": [r,g,b], "emission": [r,g,b], "two_sided": bool}, or
 //                 "materials": [ {...}, ... ] with "triangle_materials": [m, ...] (one per triangle) } ],
-//   "lights": [ { "type": "directional" | "point" | "spot", "mode": "baked" | "realtime",
+//   "lights": [ { "type": "directional" | "point" | "spot", "mode": "baked" | "realtime" | "mixed",
 //                 "shadows": bool, "color": [r,g,b], "intensity": x, "position": [x,y,z],
 //                 "direction": [x,y,z], "range": x or "inf", "inner_angle": deg, "outer_angle": deg } ],
 //   "sky": {"color": [r,g,b]} or {"sh": [27 floats]} or null,
@@ -192,7 +192,8 @@ void add_light(Scene& scene, const json& value, size_t index, const std::string&
         const std::string mode = text(value["mode"], where + ": mode");
         if (mode == "baked") light.mode = TP_LIGHT_MODE_BAKED;
         else if (mode == "realtime") light.mode = TP_LIGHT_MODE_REALTIME;
-        else fail_at(where, "unknown mode \"" + mode + "\" (baked or realtime)");
+        else if (mode == "mixed") light.mode = TP_LIGHT_MODE_MIXED;
+        else fail_at(where, "unknown mode \"" + mode + "\" (baked, realtime or mixed)");
     }
     if (value.contains("shadows")) light.shadows = boolean(value["shadows"], where + ": shadows") ? 1 : 0;
     if (value.contains("color")) vector3(value["color"], where + ": color", light.color);

@@ -6,6 +6,7 @@
 #include "bake/flat_delaunay.h"
 #include "bake/hull.h"
 #include "bake/input_screening.h"
+#include "bake/leak_edges.h"
 #include "bake/line_segments.h"
 #include "bake/outer_cells.h"
 #include "bake/probe_merge.h"
@@ -41,6 +42,10 @@ void check_settings(const BuildSettings& settings) {
     }
     if (!(settings.flat_tolerance >= 0 && settings.flat_tolerance <= 0.1)) {
         throw Error(Status::invalid_argument, "flat_tolerance must be in [0, 0.1]");
+    }
+    if (settings.occlusion && (settings.occlusion_lights < 1 || settings.occlusion_lights > kOcclusionChannels)) {
+        throw Error(Status::invalid_argument, "occlusion_lights is " + std::to_string(settings.occlusion_lights) +
+                                                  ": occlusion covers 1 to 4 mixed lights");
     }
 }
 
@@ -205,6 +210,27 @@ size_t orient_cells(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, co
     return flat;
 }
 
+// Occlusion of the stored probes: the rounded mean over the input probes merged into each; unused
+// channels 255 (unshadowed).
+void store_occlusion(const BuildSettings& settings, size_t count, StoreData& data) {
+    const size_t probes = data.probe_count();
+    std::vector<uint32_t> sum(probes * kOcclusionChannels, 0), members(probes, 0);
+    for (size_t i = 0; i < count; ++i) {
+        const uint8_t* in = settings.occlusion + i * settings.occlusion_stride;
+        const uint32_t j = data.input_remap[i];
+        ++members[j];
+        for (uint32_t c = 0; c < kOcclusionChannels; ++c) sum[j * kOcclusionChannels + c] += in[c];
+    }
+    data.occlusion_lights = settings.occlusion_lights;
+    data.occlusion.resize(probes * kOcclusionChannels);
+    for (size_t j = 0; j < probes; ++j)
+        for (uint32_t c = 0; c < kOcclusionChannels; ++c)
+            data.occlusion[j * kOcclusionChannels + c] =
+                c < settings.occlusion_lights
+                    ? uint8_t((sum[j * kOcclusionChannels + c] + members[j] / 2) / members[j])
+                    : uint8_t(255);
+}
+
 }  // namespace
 
 StoreData build_store_data(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
@@ -354,6 +380,11 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
 
     report_progress(settings, 0.85f, "ordering");
     order_cells_for_locality(data);
+    if (settings.occlusion) store_occlusion(settings, count, data);
+    if (settings.scene) {
+        report_progress(settings, 0.87f, "leak control");
+        add_leak_edges(*settings.scene, data);
+    }
     report_progress(settings, 0.9f, "grid");
     build_start_grid(data);
     report_progress(settings, 1.0f, "done");

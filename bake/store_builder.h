@@ -5,6 +5,7 @@
 // a merged group survives (the first given) and, within the merge tolerance, greedy merge chains.
 #pragma once
 
+#include "bake/scene.h"
 #include "capi/tetprobe.h"
 #include "core/option_defaults.h"
 #include "core/store_data.h"
@@ -19,6 +20,12 @@ struct BuildSettings {
     double flat_tolerance = kDefaultFlatTolerance;    // fraction of the bounding-box diagonal
     tp_progress_fn progress = nullptr;
     void* progress_user = nullptr;
+    // Optional scene data. occlusion: 4 bytes per input probe at occlusion_stride bytes (channels at
+    // and above occlusion_lights are ignored); a merged probe stores the rounded mean of its group.
+    const uint8_t* occlusion = nullptr;
+    size_t occlusion_stride = 4;
+    uint32_t occlusion_lights = 0;   // 1..4 with occlusion
+    const Scene* scene = nullptr;    // leak control: cell edges crossing its geometry are stored
 };
 
 // Throws tetprobe::Error (Status::invalid_argument, degenerate, tetgen,

@@ -101,4 +101,11 @@ TP_API tp_status tp_bake(const tp_scene*, const float*, size_t, size_t, const tp
     TP_API_END
 }
 
+TP_API tp_status tp_bake_occlusion(const tp_scene*, const float*, size_t, size_t, const tp_bake_options*, uint8_t*,
+                                   size_t, uint32_t*) {
+    TP_API_BEGIN
+    return unavailable("tp_bake_occlusion");
+    TP_API_END
+}
+
 }  // extern "C"

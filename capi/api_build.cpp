@@ -1,6 +1,7 @@
 // tp_store_build: the C ABI of the store builder (bake-time library only).
 #include "bake/store_builder.h"
 #include "capi/boundary.h"
+#include "capi/scene_handle.h"
 #include "capi/strides.h"
 #include "capi/store_handle.h"
 #include "core/store.h"
@@ -37,6 +38,12 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
     if (TP_OPTION_FIELD(options, flat_tolerance)) settings.flat_tolerance = options->flat_tolerance;
     if (TP_OPTION_FIELD(options, progress)) settings.progress = options->progress;
     if (TP_OPTION_FIELD(options, progress_user)) settings.progress_user = options->progress_user;
+    if (TP_OPTION_FIELD(options, occlusion_lights) && options->occlusion) {
+        settings.occlusion = options->occlusion;
+        settings.occlusion_stride = tetprobe::resolve_stride(options->occlusion_stride, 4, "occlusion_stride");
+        settings.occlusion_lights = options->occlusion_lights;
+    }
+    if (TP_OPTION_FIELD(options, scene) && options->scene) settings.scene = &options->scene->scene;
     return settings;
 }
 
@@ -56,6 +63,7 @@ TP_API tp_status tp_store_build(const float* positions, size_t position_stride, 
     tetprobe::require_addressable(probe_count, position_stride, kPositionBytes, "positions");
     if (sh) tetprobe::require_addressable(probe_count, sh_stride, kShBytes, "sh");
     const tetprobe::BuildSettings settings = read_build_options(options);
+    if (settings.occlusion) tetprobe::require_addressable(probe_count, settings.occlusion_stride, 4, "occlusion");
 
     const tetprobe::StoreData data =
         tetprobe::build_store_data(positions, position_stride, sh, sh_stride, probe_count, settings);

@@ -2,18 +2,17 @@
 #include "boundary.h"
 #include "strides.h"
 
+#include "scene_handle.h"
+
 #include "bake/effects_plan.h"
 #include "bake/lighting_bake.h"
+#include "bake/occlusion_bake.h"
 #include "bake/scene.h"
 #include "bake/scene_file.h"
 
 #include <cmath>
 #include <cstring>
 #include <string>
-
-struct tp_scene {
-    tetprobe::Scene scene;
-};
 
 using tetprobe::fail;
 
@@ -209,6 +208,25 @@ TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t p
     const std::vector<float> sh = tetprobe::bake_lighting(scene->scene, probes, settings);
     for (size_t i = 0; i < count; ++i)
         std::memcpy(reinterpret_cast<char*>(out_sh) + i * sh_stride, &sh[27 * i], 27 * sizeof(float));
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions, size_t position_stride,
+                                   size_t count, const tp_bake_options* options, uint8_t* out_occlusion,
+                                   size_t occlusion_stride, uint32_t* out_mixed_lights) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(out_occlusion);
+    occlusion_stride = tetprobe::resolve_stride(occlusion_stride, 4, "occlusion_stride");
+    tetprobe::BakeSettings settings;
+    if (tp_status s = read_options(options, settings)) return s;
+    std::vector<float> probes;
+    if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
+    uint32_t lights = 0;
+    const std::vector<uint8_t> occlusion = tetprobe::bake_occlusion(scene->scene, probes, settings, &lights);
+    for (size_t i = 0; i < count; ++i) std::memcpy(out_occlusion + i * occlusion_stride, &occlusion[4 * i], 4);
+    if (out_mixed_lights) *out_mixed_lights = lights;
     return TP_OK;
     TP_API_END
 }

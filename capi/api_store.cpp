@@ -166,7 +166,8 @@ TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info) {
     full.inner_cells = h.inner_cell_count;
     full.outer_cells = h.cell_count - h.inner_cell_count;
     full.index_bits = (h.flags & kFlagIndex32) ? 32 : 16;
-    full.flags = h.flags;  // the same bits as TP_BUILD_* (boundary.h)
+    // The same bits as TP_BUILD_* (boundary.h); the scene-data bits are reported by their own fields.
+    full.flags = h.flags & (kFlagNoExtrapolation | kFlagIndex32 | kFlagCompact);
     for (int k = 0; k < 3; ++k) {
         full.grid[k] = h.grid[k];
         full.origin[k] = h.origin[k];
@@ -174,6 +175,8 @@ TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info) {
         full.bounds_max[k] = float(h.origin[k] + double(h.bounds_max[k]));
     }
     full.bytes = s.blob_size();
+    full.occlusion_lights = h.occlusion_lights;
+    full.leak_edges = h.leak_edge_count;
     copy_fitting_fields(info, full, info->struct_size);
     return TP_OK;
     TP_API_END
@@ -202,6 +205,44 @@ TP_API tp_status tp_store_interpolate(const tp_store* store, const float positio
     const Status status = store_of(store).interpolate(position, cell_hint, out_sh);
     if (status != Status::ok) return fail(status, kOutsideMessage);
     return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_interpolate_occlusion(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                                float out_sh[27], float out_occlusion[4]) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    TP_REQUIRE_NOT_NULL(position);
+    TP_REQUIRE_NOT_NULL(out_sh);
+    TP_REQUIRE_NOT_NULL(out_occlusion);
+    if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
+    const Status status = store_of(store).interpolate(position, cell_hint, out_sh, out_occlusion);
+    if (status != Status::ok) return fail(status, kOutsideMessage);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_store_interpolate_occlusion_batch(const tp_store* store, size_t count, const float* positions,
+                                                      size_t position_stride, int32_t* hints, size_t hint_stride,
+                                                      float* out_sh, size_t sh_stride, float* out_occlusion,
+                                                      size_t occlusion_stride, const tp_batch_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(store);
+    const BatchSettings settings = batch_settings(options);
+    if (count == 0) return TP_OK;
+    TP_REQUIRE_NOT_NULL(positions);
+    TP_REQUIRE_NOT_NULL(out_sh);
+    TP_REQUIRE_NOT_NULL(out_occlusion);
+    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
+    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
+    sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
+    occlusion_stride = resolve_stride(occlusion_stride, 4 * sizeof(float), "occlusion_stride");
+    require_finite_positions(positions, count, position_stride);
+    size_t first_outside = count;
+    const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
+                                                            out_sh, sh_stride, settings, &first_outside,
+                                                            out_occlusion, occlusion_stride);
+    return report_outside(status, first_outside);
     TP_API_END
 }
 

@@ -110,6 +110,16 @@ typedef struct tp_build_options {
     double flat_tolerance;
     tp_progress_fn progress;     /* may be NULL */
     void* progress_user;
+    /** Occlusion probes (format 4): 4 bytes per input probe at occlusion_stride bytes (0 = 4), byte i the
+        quantised visibility of mixed light i (tp_bake_occlusion's output), or NULL for none. A merged
+        probe keeps the rounded mean of its group. */
+    const uint8_t* occlusion;
+    size_t occlusion_stride;
+    uint32_t occlusion_lights;   /* mixed lights the bytes cover, 1..4 (ignored without occlusion) */
+    /** Leak control: with a scene, probe pairs of a cell that cannot see each other (an Embree ray each way
+        between them hits the scene) are stored, and queries weigh down the probe behind the wall (see
+        tp_store_interpolate). NULL = none. Bake-time library only. */
+    const struct tp_scene* scene;
 } tp_build_options;
 
 /** Fills defaults and struct_size. */
@@ -158,6 +168,8 @@ typedef struct tp_store_info {
     double origin[3];            /* local origin of the store, world units */
     float bounds_min[3];         /* world-space bounds of the probes */
     float bounds_max[3];
+    uint32_t occlusion_lights;   /* mixed lights with occlusion per probe (0 = none) */
+    uint32_t leak_edges;         /* probe pairs that cannot see each other (0 = no leak control) */
 } tp_store_info;
 
 /** Fills info (set info->struct_size first; fields beyond it are left untouched). */
@@ -168,7 +180,11 @@ TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info);
 TP_API tp_status tp_store_probe_sh(const tp_store* store, uint32_t probe, float out_sh[27]);
 
 /** Interpolated SH at position. cell_hint: in, the cell of the last query (-1 = none); out, the cell
-    found. May be NULL (no hint). */
+    found. May be NULL (no hint). In a store built with a scene (leak control), a cell whose probes
+    include a pair that cannot see each other scales each probe's weight by its visibility from the
+    query (a smoothstep over the wall's crossing of the edge, along the query's barycentric projection
+    onto it) and renormalises: continuous everywhere, exact at probes, and cells without such a pair
+    answer bit for bit as without leak control. */
 TP_API tp_status tp_store_interpolate(const tp_store* store, const float position[3], int32_t* cell_hint,
                                       float out_sh[27]);
 
@@ -230,6 +246,20 @@ typedef struct tp_location {
 /** Locates position and reports everything the query used (set location->struct_size first). */
 TP_API tp_status tp_store_locate(const tp_store* store, const float position[3], int32_t* cell_hint,
                                  tp_location* location);
+
+/** Interpolated SH and occlusion at position (Unity's CalculateInterpolatedLightAndOcclusionProbes):
+    out_occlusion[i] in [0, 1] is the visibility of mixed light i blended with the query's weights from
+    the probes' quantised bytes (tp_build_options.occlusion); 1 for channels without a mixed light and
+    for a store built without occlusion. Outside (TP_ERROR_OUTSIDE) both are zero. */
+TP_API tp_status tp_store_interpolate_occlusion(const tp_store* store, const float position[3], int32_t* cell_hint,
+                                                float out_sh[27], float out_occlusion[4]);
+
+/** Batch form of tp_store_interpolate_occlusion: as tp_store_interpolate_batch, plus out_occlusion at
+    occlusion_stride bytes (0 = 16), 4 floats per query. */
+TP_API tp_status tp_store_interpolate_occlusion_batch(const tp_store* store, size_t count, const float* positions,
+                                                      size_t position_stride, int32_t* hints, size_t hint_stride,
+                                                      float* out_sh, size_t sh_stride, float* out_occlusion,
+                                                      size_t occlusion_stride, const tp_batch_options* options);
 
 /* ------------------------------------------------------------------------------------------------
  * SH helpers (see the SH contract above).
@@ -352,6 +382,10 @@ typedef struct tp_material {
 
 #define TP_LIGHT_MODE_BAKED 0u    /* direct and bounced light go into the probes */
 #define TP_LIGHT_MODE_REALTIME 1u /* the engine draws direct light; only its bounced light is baked */
+/** Mixed (Unity's Shadowmask): the engine draws the direct light in real time, the probes bake its
+    bounced light (as REALTIME) and, per probe, its visibility (tp_bake_occlusion, occlusion probes).
+    At most 4 mixed lights per scene: a fifth is refused with TP_ERROR_SCENE. */
+#define TP_LIGHT_MODE_MIXED 2u
 
 typedef struct tp_light {
     uint32_t struct_size;
@@ -440,6 +474,16 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     0 = 108). */
 TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t position_stride, size_t count,
                          const tp_bake_options* options, float* out_sh, size_t sh_stride);
+
+/** Occlusion probes: per position 4 bytes at occlusion_stride (0 = 4), byte i = round(255 x the fraction of
+    the scene's i-th mixed light (in the order added) seen from the position), 255 for channels without a
+    light; *out_mixed_lights (may be NULL) receives the mixed light count (0 to 4). One shadow ray per
+    position and light (lights are points, so the fraction is 0 or 1; a light without shadows is always
+    seen; range and spot cone are the real-time light's own). Pass the bytes to tp_build_options. options:
+    progress only (may be NULL). */
+TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions, size_t position_stride,
+                                   size_t count, const tp_bake_options* options, uint8_t* out_occlusion,
+                                   size_t occlusion_stride, uint32_t* out_mixed_lights);
 
 #ifdef __cplusplus
 }

@@ -1,6 +1,7 @@
 // Store::interpolate and the batches: locate, then blend the four probes' half SH (the dispatched
 // F16C path or the portable one, see half.h). Batches split into ranges, one per thread.
 #include "core/half.h"
+#include "core/leak_control.h"
 #include "core/locate.h"
 #include "core/store.h"
 #include "core/store_impl.h"
@@ -18,6 +19,19 @@ void blend(const Store::Impl& s, const Location& loc, float out_sh[27]) {
     const uint16_t* sh[4];
     for (int k = 0; k < 4; ++k) sh[k] = s.sh + size_t(loc.probes[k]) * s.sh_halves;
     blend_sh_halves(sh, loc.weights, out_sh);
+}
+
+// Mixed lights' visibility at the location: the weighted occlusion bytes, in [0, 1]; 1 for channels
+// the store has no light for (or a store without occlusion).
+void blend_occlusion(const Store::Impl& s, const Location& loc, float out[4]) {
+    for (uint32_t i = 0; i < kOcclusionChannels; ++i) out[i] = 1.0f;
+    if (!s.occlusion) return;
+    for (uint32_t i = 0; i < s.occlusion_lights; ++i) {
+        float sum = 0;
+        for (int k = 0; k < 4; ++k) sum += loc.weights[k] * float(s.occlusion[size_t(loc.probes[k]) * kOcclusionChannels + i]);
+        const float value = sum / 255.0f;
+        out[i] = value < 0 ? 0 : (value > 1 ? 1 : value);
+    }
 }
 
 template <class T>
@@ -70,6 +84,7 @@ size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* po
             const size_t i = group + j;
             if (hints) std::memcpy(strided(hints, i, hint_stride), &located[j].cell, sizeof located[j].cell);
             if (located[j].status != Status::ok && first_outside == end) first_outside = i;
+            else if (s.leak_offsets) weigh_by_visibility(s, located[j]);
         }
         for (size_t j = 0; j < count; ++j) answer(group + j, located[j]);
     }
@@ -107,30 +122,37 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
 
 }  // namespace
 
-Status Store::interpolate(const float world_position[3], int32_t* hint, float out_sh[27]) const {
+Status Store::interpolate(const float world_position[3], int32_t* hint, float out_sh[27], float out_occlusion[4]) const {
     float q[3];
     local_position(*impl_, world_position, q);
-    const Location loc = locate_local(*impl_, q, hint ? *hint : -1);
+    Location loc = locate_local(*impl_, q, hint ? *hint : -1);
     if (hint) *hint = loc.cell;
     if (loc.status != Status::ok) {
         std::fill(out_sh, out_sh + 27, 0.0f);
+        if (out_occlusion) std::fill(out_occlusion, out_occlusion + kOcclusionChannels, 0.0f);
         return loc.status;
     }
+    if (impl_->leak_offsets) weigh_by_visibility(*impl_, loc);
     blend(*impl_, loc, out_sh);
+    if (out_occlusion) blend_occlusion(*impl_, loc, out_occlusion);
     return Status::ok;
 }
 
 Status Store::interpolate_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
                                 size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,
-                                size_t* first_outside) const {
+                                size_t* first_outside, float* out_occlusion, size_t occlusion_stride) const {
     const Impl& s = *impl_;
     return run_batch(s, count, positions, position_stride, hints, hint_stride, settings, first_outside,
                      [&](size_t i, const Location& loc) {
                          float* out = strided(out_sh, i, sh_stride);
-                         if (loc.status != Status::ok)
+                         float* occlusion = out_occlusion ? strided(out_occlusion, i, occlusion_stride) : nullptr;
+                         if (loc.status != Status::ok) {
                              std::fill(out, out + 27, 0.0f);
-                         else
+                             if (occlusion) std::fill(occlusion, occlusion + kOcclusionChannels, 0.0f);
+                         } else {
                              blend(s, loc, out);
+                             if (occlusion) blend_occlusion(s, loc, occlusion);
+                         }
                      });
 }
 

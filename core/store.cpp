@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "core/cell_adjacency.h"
 #include "core/half.h"
+#include "core/leak_control.h"
 #include "core/locate.h"
 #include "core/store_impl.h"
 #include "core/store_validation.h"
@@ -77,11 +78,20 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     s.probe_source = reinterpret_cast<const uint32_t*>(section(kSectionProbeSource));
     s.input_remap = reinterpret_cast<const uint32_t*>(section(kSectionInputRemap));
     s.grid_cells = section(kSectionGrid);
+    if (h.flags & kFlagOcclusion) {
+        s.occlusion_lights = h.occlusion_lights;
+        s.occlusion = section(kSectionOcclusion);
+    }
+    if (h.flags & kFlagLeakControl) {
+        s.leak_offsets = reinterpret_cast<const uint32_t*>(section(kSectionLeakOffsets));
+        s.leak_edges = reinterpret_cast<const LeakEdge*>(section(kSectionLeakEdges));
+    }
     if (s.index32)
         set_cell_records<uint32_t>(s, section(kSectionCells));
     else
         set_cell_records<uint16_t>(s, section(kSectionCells));
     validate_cell_records(s);
+    if (s.leak_offsets) mark_blocked_cells(s);
     return store;
 }
 
@@ -103,6 +113,12 @@ void Store::probe_sh(uint32_t stored, float out[27]) const {
         return;
     }
     halves_to_floats(impl_->sh + size_t(stored) * impl_->sh_halves, out, 27);
+}
+
+void Store::probe_occlusion(uint32_t stored, uint8_t out[4]) const {
+    for (uint32_t i = 0; i < kOcclusionChannels; ++i)
+        out[i] = impl_->occlusion && stored < impl_->probe_count ? impl_->occlusion[size_t(stored) * kOcclusionChannels + i]
+                                                                 : 255;
 }
 
 const float* Store::probe_position(uint32_t stored) const {
@@ -136,7 +152,9 @@ void Store::cell(uint32_t cell, uint32_t vertices[4], uint32_t neighbours[4]) co
 Location Store::locate(const float world_position[3], int32_t hint) const {
     float q[3];
     local_position(*impl_, world_position, q);
-    return locate_local(*impl_, q, hint);
+    Location loc = locate_local(*impl_, q, hint);
+    if (impl_->leak_offsets && loc.status == Status::ok) weigh_by_visibility(*impl_, loc);
+    return loc;
 }
 
 Location Store::locate_exhaustive(const float world_position[3], Cells cells) const {

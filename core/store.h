@@ -47,25 +47,33 @@ public:
     uint32_t input_to_stored(uint32_t input) const;
     // Decodes a stored probe's half SH to 27 floats.
     void probe_sh(uint32_t stored, float out[27]) const;
+    // A stored probe's occlusion bytes (4; all 255 in a store without occlusion).
+    void probe_occlusion(uint32_t stored, uint8_t out[4]) const;
     // A stored probe's local position (3 floats).
     const float* probe_position(uint32_t stored) const;
     // The four vertex and four neighbour slots of a cell, widened to 32 bits (kNone32, kOuter32).
     void cell(uint32_t cell, uint32_t vertices[4], uint32_t neighbours[4]) const;
 
-    // Finds the cell of a world-space position starting from hint (-1 = none: start from the grid).
+    // Finds the cell of a world-space position starting from hint (-1 = none: start from the grid);
+    // the weights are those a query blends (leak control applied when the store has it).
     Location locate(const float world_position[3], int32_t hint) const;
     // The walk's referee: the cell decided over every cell by exact orientations (O(cells)), or over
     // the outer cells alone (the walk's fallback for a point beyond the hull; cell -1 if none holds it).
     enum class Cells { all, outer };
     Location locate_exhaustive(const float world_position[3], Cells cells) const;
     // locate + blend; *hint (may be null) is read and updated. Returns ok or outside (SH zero).
-    Status interpolate(const float world_position[3], int32_t* hint, float out_sh[27]) const;
+    // out_occlusion (may be null) receives the mixed lights' interpolated visibility (4 floats in
+    // [0, 1]; 1 for channels without a light; zero outside).
+    Status interpolate(const float world_position[3], int32_t* hint, float out_sh[27],
+                       float out_occlusion[4] = nullptr) const;
 
     // count queries at byte strides (already resolved, > 0); hints may be null. Returns ok, or
     // outside with *first_outside the index of the first query outside (its SH and weights zero).
+    // out_occlusion (may be null): 4 floats per query at occlusion_stride bytes, as interpolate's.
     Status interpolate_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
                              size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,
-                             size_t* first_outside) const;
+                             size_t* first_outside, float* out_occlusion = nullptr,
+                             size_t occlusion_stride = 0) const;
     // The same for weights: out_probes are stored probe indices.
     Status weights_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
                          size_t hint_stride, uint32_t* out_probes, size_t probes_stride, float* out_weights,

@@ -4,6 +4,8 @@
 // chooses the index width and lays out the flags' layout (fast or compact).
 #pragma once
 
+#include "core/store_format.h"
+
 #include <cstdint>
 #include <vector>
 
@@ -27,6 +29,12 @@ struct StoreData {
     std::vector<uint32_t> grid_cells;      // grid[0]*grid[1]*grid[2]
     float bounds_min[3] = {0, 0, 0};       // local
     float bounds_max[3] = {0, 0, 0};
+    // Optional scene data: occlusion_lights > 0 writes the occlusion section (4 bytes per stored
+    // probe); non-empty leak_offsets (probe_count + 1) writes the leak sections.
+    uint32_t occlusion_lights = 0;
+    std::vector<uint8_t> occlusion;
+    std::vector<uint32_t> leak_offsets;
+    std::vector<LeakEdge> leak_edges;
 
     uint32_t probe_count() const { return uint32_t(probe_source.size()); }
     uint32_t cell_count() const { return uint32_t(cell_vertices.size() / 4); }

@@ -1,7 +1,7 @@
-// The store blob, format version 3: one contiguous, position-independent, little-endian buffer.
+// The store blob, format version 4: one contiguous, position-independent, little-endian buffer.
 // This file is the single description of the layout; the writer and the loader both follow it.
 //
-//   [header: 120 bytes][section table: kSectionCount x {uint64 offset, uint64 size}][sections...]
+//   [header: 128 bytes][section table: kSectionCount x {uint64 offset, uint64 size}][sections...]
 //
 // Sections appear in table order, each at a 16-byte-aligned offset, with zero padding between
 // them and nothing after the last. The checksum is FNV-1a 64 over the blob's little-endian 64-bit
@@ -35,6 +35,17 @@
 // - grid: gx*gy*gz start cells over [bounds_min, bounds_max] (x fastest) for queries without hint.
 // - probe_source: stored probe -> index of the input probe it came from (the survivor of merges);
 //   input_remap: input probe -> stored probe.
+// - optional scene data (format 4). A section a flag does not announce is empty (size 0), so a store
+//   built without a scene costs only its table entries and alignment.
+//   occlusion (kFlagOcclusion): per probe 4 bytes, byte i = round(255 * fraction of mixed light i the
+//   probe sees) for i < header.occlusion_lights (1..4); the unused bytes are 255 (unshadowed).
+//   leak control (kFlagLeakControl): probe pairs of a cell edge that cannot see each other (geometry
+//   crosses the segment between them), as lists per probe: leak_offsets[probe_count + 1] (uint32,
+//   leak_offsets[0] = 0, non-decreasing, leak_offsets[probe_count] = header.leak_edge_count) and
+//   leak_edges (LeakEdge). The edges of probe a are leak_edges[leak_offsets[a], leak_offsets[a+1]),
+//   each naming a partner b > a (strictly increasing within a list) and the ramp [start, end] with
+//   0 <= start < end <= 1: the stretch of the segment a->b (0 at a, 1 at b) over which visibility
+//   passes from a to b (the wall crossing widened; see core/leak_control.h).
 #pragma once
 
 #include <cstddef>
@@ -43,14 +54,19 @@
 namespace tetprobe {
 
 constexpr char kStoreMagic[8] = {'T', 'E', 'T', 'P', 'R', 'O', 'B', 'E'};
-constexpr uint32_t kStoreFormatVersion = 3;
+constexpr uint32_t kStoreFormatVersion = 4;
 constexpr size_t kSectionAlignment = 16;
 
 // Header flags. The C ABI's TP_BUILD_* bits are these same values (checked where it translates).
 constexpr uint32_t kFlagNoExtrapolation = 1u;  // no outer cells
 constexpr uint32_t kFlagIndex32 = 2u;          // indices are uint32, else uint16
 constexpr uint32_t kFlagCompact = 4u;          // compact layout (see above), else fast
-constexpr uint32_t kKnownFlags = kFlagNoExtrapolation | kFlagIndex32 | kFlagCompact;
+constexpr uint32_t kFlagOcclusion = 8u;        // the occlusion section holds mixed lights' visibility
+constexpr uint32_t kFlagLeakControl = 16u;     // the leak sections list probe pairs that cannot see each other
+constexpr uint32_t kKnownFlags = kFlagNoExtrapolation | kFlagIndex32 | kFlagCompact | kFlagOcclusion | kFlagLeakControl;
+
+// Occlusion: bytes per probe (one per mixed light, at most four).
+constexpr uint32_t kOcclusionChannels = 4;
 
 enum Section : uint32_t {
     kSectionPositions = 0,      // float32 x 3 x probe_count
@@ -60,6 +76,9 @@ enum Section : uint32_t {
     kSectionInputRemap,         // uint32 x input_probe_count
     kSectionCells,              // index x (fast 8 | compact 4) x cell_count
     kSectionGrid,               // index x grid[0]*grid[1]*grid[2]
+    kSectionOcclusion,          // uint8 x 4 x probe_count (kFlagOcclusion), else empty
+    kSectionLeakOffsets,        // uint32 x (probe_count + 1) (kFlagLeakControl), else empty
+    kSectionLeakEdges,          // LeakEdge x leak_edge_count (kFlagLeakControl), else empty
     kSectionCount
 };
 
@@ -75,7 +94,7 @@ constexpr uint32_t kMaxIndex16 = 0xFFFDu;  // largest count for which 16-bit ind
 struct StoreHeader {
     char magic[8];
     uint32_t format_version;
-    uint32_t header_size;       // 120 + 16 * kSectionCount
+    uint32_t header_size;       // 128 + 16 * kSectionCount
     uint32_t flags;
     uint32_t dimension;
     uint32_t axis;
@@ -89,7 +108,14 @@ struct StoreHeader {
     float bounds_max[3];
     uint64_t checksum;
     uint32_t section_count;     // kSectionCount
+    uint32_t occlusion_lights;  // 1..4 with kFlagOcclusion, else 0
+    uint32_t leak_edge_count;   // entries of the leak_edges section (0 without kFlagLeakControl)
     uint32_t reserved;          // 0
+};
+// One probe pair that cannot see each other (in the list of the lower probe, a).
+struct LeakEdge {
+    uint32_t partner;           // b > a
+    float start, end;           // ramp along a->b, 0 <= start < end <= 1
 };
 struct SectionEntry {
     uint64_t offset;
@@ -97,7 +123,8 @@ struct SectionEntry {
 };
 #pragma pack(pop)
 
-static_assert(sizeof(StoreHeader) == 120, "header layout");
+static_assert(sizeof(StoreHeader) == 128, "header layout");
+static_assert(sizeof(LeakEdge) == 12, "leak edge layout");
 constexpr size_t kHeaderSize = sizeof(StoreHeader) + kSectionCount * sizeof(SectionEntry);
 constexpr size_t kChecksumOffset = offsetof(StoreHeader, checksum);
 // Where the format version sits in every format (so an older blob is told apart from a corrupt one).

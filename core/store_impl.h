@@ -47,6 +47,13 @@ struct Store::Impl {
     const void* cells = nullptr;             // CellRecord<Index> per cell (the blob's, or rebuilt)
     const void* grid_cells = nullptr;        // grid[0]*grid[1]*grid[2] indices
     AlignedBytes rebuilt_cells;              // compact layout: the cell records rebuilt on load
+
+    // Optional scene data (null / 0 when the blob has none).
+    uint32_t occlusion_lights = 0;
+    const uint8_t* occlusion = nullptr;      // 4 per probe
+    const uint32_t* leak_offsets = nullptr;  // probe_count + 1; non-null = leak control on
+    const LeakEdge* leak_edges = nullptr;
+    AlignedBytes leak_cells;                 // per cell 1 if two of its probes cannot see each other (built on load)
 };
 
 }  // namespace tetprobe

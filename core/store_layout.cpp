@@ -24,6 +24,10 @@ bool expected_section_sizes(const StoreHeader& header, uint64_t sizes[kSectionCo
     sizes[kSectionProbeSource] = probes * sizeof(uint32_t);
     sizes[kSectionInputRemap] = uint64_t(header.input_probe_count) * sizeof(uint32_t);
     sizes[kSectionCells] = cells * (compact ? 4 : 8) * index_bytes;
+    sizes[kSectionOcclusion] = (header.flags & kFlagOcclusion) ? probes * kOcclusionChannels : 0;
+    const bool leak = (header.flags & kFlagLeakControl) != 0;
+    sizes[kSectionLeakOffsets] = leak ? (probes + 1) * sizeof(uint32_t) : 0;
+    sizes[kSectionLeakEdges] = uint64_t(header.leak_edge_count) * sizeof(LeakEdge);
     return multiply(grid_cells, index_bytes, &sizes[kSectionGrid]);
 }
 

@@ -43,6 +43,12 @@ void check_header(const StoreHeader& h, size_t size) {
     if (size < kHeaderSize) reject("truncated: " + std::to_string(size) + " bytes, the section table ends at " +
                                    std::to_string(kHeaderSize));
     if (h.reserved != 0) reject("reserved header field is not zero");
+    const bool occlusion = (h.flags & kFlagOcclusion) != 0;
+    if (occlusion != (h.occlusion_lights != 0) || h.occlusion_lights > kOcclusionChannels)
+        reject("occlusion_lights is " + std::to_string(h.occlusion_lights) + ", expected " +
+               (occlusion ? "1 to 4 with the occlusion flag" : "0 without the occlusion flag"));
+    if (!(h.flags & kFlagLeakControl) && h.leak_edge_count != 0)
+        reject("leak_edge_count is " + std::to_string(h.leak_edge_count) + " without the leak-control flag");
     if (h.flags & ~kKnownFlags) reject("unknown flags " + std::to_string(h.flags));
     if (h.dimension > 3) reject("dimension " + std::to_string(h.dimension) + " is above 3");
     if (h.axis > 2 || ((h.dimension == 0 || h.dimension == 3) && h.axis != 0))
@@ -142,6 +148,35 @@ void check_probes(const uint8_t* data, const StoreHeader& h, const SectionEntry 
     }
 }
 
+// Occlusion bytes of unused channels, and the leak lists: offsets spanning the edges, partners above
+// their probe, increasing, in range; ramps inside [0, 1] and not empty.
+void check_scene_data(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
+    if (h.flags & kFlagOcclusion) {
+        const uint8_t* occlusion = data + table[kSectionOcclusion].offset;
+        for (uint64_t i = 0; i < uint64_t(h.probe_count) * kOcclusionChannels; ++i)
+            if (i % kOcclusionChannels >= h.occlusion_lights && occlusion[i] != 255)
+                reject(at("occlusion", i) + " belongs to no mixed light and must be 255");
+    }
+    if (!(h.flags & kFlagLeakControl)) return;
+    const uint32_t* offsets = reinterpret_cast<const uint32_t*>(data + table[kSectionLeakOffsets].offset);
+    const LeakEdge* edges = reinterpret_cast<const LeakEdge*>(data + table[kSectionLeakEdges].offset);
+    if (offsets[0] != 0) reject("leak_offsets[0] is not 0");
+    if (offsets[h.probe_count] != h.leak_edge_count) reject(at("leak_offsets", h.probe_count) + " is not leak_edge_count");
+    for (uint64_t a = 0; a < h.probe_count; ++a) {
+        if (offsets[a + 1] < offsets[a]) reject(at("leak_offsets", a + 1) + " decreases");
+        if (offsets[a + 1] > h.leak_edge_count) reject(at("leak_offsets", a + 1) + " is beyond leak_edge_count");
+        for (uint64_t i = offsets[a]; i < offsets[a + 1]; ++i) {
+            const LeakEdge& e = edges[i];
+            if (e.partner <= a || e.partner >= h.probe_count)
+                reject(at("leak_edges", i) + " names partner " + std::to_string(e.partner) + " of probe " +
+                       std::to_string(a) + " (must be above it and a probe)");
+            if (i > offsets[a] && e.partner <= edges[i - 1].partner) reject(at("leak_edges", i) + " is out of order");
+            if (!(e.start >= 0.0f && e.start < e.end && e.end <= 1.0f))
+                reject(at("leak_edges", i) + " has a ramp outside 0 <= start < end <= 1");
+        }
+    }
+}
+
 template <class Index>
 void check_records(const Store::Impl& s) {
     const auto* records = static_cast<const CellRecord<Index>*>(s.cells);
@@ -222,6 +257,7 @@ void validate_store_blob(const uint8_t* data, size_t size) {
     const uint64_t computed = store_checksum(data, size);
     if (stored != computed) reject("checksum mismatch (the blob is corrupt)");
     check_probes(data, h, table);
+    check_scene_data(data, h, table);
     if (h.flags & kFlagIndex32)
         check_cell_indices<uint32_t>(data, h, table);
     else

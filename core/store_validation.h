@@ -11,7 +11,7 @@ namespace tetprobe {
 // Validates a blob held in aligned memory (size bytes, all readable): header, section table,
 // checksum, probes, every cell vertex and grid index, and (fast layout) every neighbour index
 // against its count. Throws Error(Status::invalid_blob) naming the first problem found, or
-// Error(Status::version) for a well-formed blob of another format version (format 2 included).
+// Error(Status::version) for a well-formed blob of another format version (formats 2 and 3 included).
 // Reads nothing outside [data, data + size).
 void validate_store_blob(const uint8_t* data, size_t size);
 

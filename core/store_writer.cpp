@@ -1,4 +1,4 @@
-// write_store_blob: StoreData -> the format-3 blob laid out as store_format.h describes (fast or compact).
+// write_store_blob: StoreData -> the format-4 blob laid out as store_format.h describes (fast or compact).
 #include "core/error.h"
 #include "core/half.h"
 #include "core/store.h"
@@ -91,6 +91,22 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
         require(std::isfinite(data.origin[k]) && std::isfinite(data.bounds_min[k]) &&
                     std::isfinite(data.bounds_max[k]), [&] { return "origin or bounds not finite"; });
 
+    require(data.occlusion_lights <= kOcclusionChannels, [&] { return "more than 4 occlusion lights"; });
+    if (data.occlusion_lights > 0) {
+        require_size(data.occlusion.size(), probes * kOcclusionChannels, "occlusion");
+        for (size_t i = 0; i < data.occlusion.size(); ++i)
+            require(i % kOcclusionChannels < data.occlusion_lights || data.occlusion[i] == 255,
+                    [&] { return "occlusion[" + std::to_string(i) + "] of an unused channel is not 255"; });
+    }
+    const bool leak = !data.leak_offsets.empty();
+    if (leak) {
+        require_size(data.leak_offsets.size(), probes + 1, "leak_offsets");
+        require(data.leak_offsets[0] == 0 && data.leak_offsets.back() == data.leak_edges.size(),
+                [&] { return "leak_offsets do not span leak_edges"; });
+    } else {
+        require(data.leak_edges.empty(), [&] { return "leak_edges without leak_offsets"; });
+    }
+
     const bool index32 =
         (data.flags & kFlagIndex32) || probes > kMaxIndex16 || cells > kMaxIndex16;
 
@@ -99,7 +115,10 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     std::memcpy(header.magic, kStoreMagic, sizeof header.magic);
     header.format_version = kStoreFormatVersion;
     header.header_size = uint32_t(kHeaderSize);
-    header.flags = (data.flags & (kFlagNoExtrapolation | kFlagCompact)) | (index32 ? kFlagIndex32 : 0u);
+    header.flags = (data.flags & (kFlagNoExtrapolation | kFlagCompact)) | (index32 ? kFlagIndex32 : 0u) |
+                   (data.occlusion_lights > 0 ? kFlagOcclusion : 0u) | (leak ? kFlagLeakControl : 0u);
+    header.occlusion_lights = data.occlusion_lights;
+    header.leak_edge_count = uint32_t(data.leak_edges.size());
     const bool compact = (data.flags & kFlagCompact) != 0;
     header.dimension = data.dimension;
     header.axis = data.dimension == 1 || data.dimension == 2 ? data.axis : 0;
@@ -150,6 +169,14 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     }
     write_indices(base + table[kSectionCells].offset, cell_indices, index32, "cells");
     write_indices(base + table[kSectionGrid].offset, data.grid_cells, index32, "grid_cells");
+    if (data.occlusion_lights > 0)
+        std::memcpy(base + table[kSectionOcclusion].offset, data.occlusion.data(), data.occlusion.size());
+    if (leak) {
+        copy_words(kSectionLeakOffsets, data.leak_offsets);
+        if (!data.leak_edges.empty())
+            std::memcpy(base + table[kSectionLeakEdges].offset, data.leak_edges.data(),
+                        data.leak_edges.size() * sizeof(LeakEdge));
+    }
 
     const uint64_t checksum = store_checksum(base, blob.size());
     std::memcpy(base + kChecksumOffset, &checksum, sizeof checksum);

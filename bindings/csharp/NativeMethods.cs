@@ -23,6 +23,11 @@ namespace TetProbe
         public double flat_tolerance;
         public IntPtr progress;
         public IntPtr progress_user;
+        // Format 4 scene data (tp_build_options_init writes the whole struct, so the layout must match).
+        public IntPtr occlusion;
+        public UIntPtr occlusion_stride;
+        public uint occlusion_lights;
+        public IntPtr scene;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -44,6 +49,8 @@ namespace TetProbe
         public double origin_x, origin_y, origin_z;
         public Vector3 bounds_min;
         public Vector3 bounds_max;
+        public uint occlusion_lights;  // format 4: mixed lights with occlusion probes (0-4)
+        public uint leak_edges;        // probe pairs kept for leak control
     }
 
     /// <summary>tp_batch_options: flags (TP_BATCH_*) and the threads a batch query may use (0 or 1 = the caller's).</summary>

@@ -5,3 +5,4 @@ int run_methods_bench(int argc, char** argv);
 int run_precision_bench(int argc, char** argv);
 int run_locate_bench(int argc, char** argv);
 int run_probe_count_bench(int argc, char** argv);
+int run_leak_bench(int argc, char** argv);

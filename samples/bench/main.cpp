@@ -13,13 +13,14 @@ int main(int argc, char** argv) {
     const char* which = argc > 1 ? argv[1] : "all";
     if (!std::strcmp(which, "methods")) return run_methods_bench(argc, argv);
     if (!std::strcmp(which, "precision")) return run_precision_bench(argc, argv);
+    if (!std::strcmp(which, "leak")) return run_leak_bench(argc, argv);  // not part of "all": bench_leak.cpp
     const bool all = !std::strcmp(which, "all");
     const bool store = all || !std::strcmp(which, "store");
     const bool bake = all || !std::strcmp(which, "bake");
     const bool locate = all || !std::strcmp(which, "locate");
     const bool probes = all || !std::strcmp(which, "probes");
     if (!store && !bake && !locate && !probes) {
-        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all|methods|precision] [--out DIR] "
+        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all|methods|precision|leak] [--out DIR] "
                              "[--quick]\n");
         return 2;
     }

@@ -72,7 +72,7 @@ bool plain_walk_mesh_from_blob(const void* blob, size_t size, PlainWalkMesh* mes
     if (size < kHeaderSize) return *why = "blob shorter than its header", false;
     StoreHeader h;
     std::memcpy(&h, bytes, sizeof h);
-    if (h.format_version != kStoreFormatVersion) return *why = "not a format-3 blob", false;
+    if (h.format_version != kStoreFormatVersion) return *why = "not a blob of this format", false;
     if (h.flags & kFlagCompact) return *why = "the plain walk reads the fast layout's neighbours", false;
     if (h.dimension != 3) return *why = "the plain walk needs a 3-dimensional probe set", false;
     SectionEntry s[kSectionCount];

@@ -3,7 +3,7 @@
  * library on every platform): their answers are known exactly, files round-trip, bad blobs and file
  * errors fail with the documented status.
  *
- * tiny_store_v3.bin: one tetrahedron with corners origin + {0, e_x, e_y, e_z}, origin (10, -20, 30.5),
+ * tiny_store_v4.bin: one tetrahedron with corners origin + {0, e_x, e_y, e_z}, origin (10, -20, 30.5),
  * built without extrapolation from five input probes (input 3 merged into input 1); store probe j
  * (inputs 0, 1, 2, 4) holds SH coefficient k = ((27 j + k) mod 23) / 4 - 2, exact in half precision.
  */
@@ -43,7 +43,7 @@ static tp_store* load_golden(const char* name) {
 }
 
 void test_golden_store_answers(void) {
-    tp_store* store = load_golden("tiny_store_v3.bin");
+    tp_store* store = load_golden("tiny_store_v4.bin");
     tp_store_info info;
     float out[27], weights[4], p[3];
     uint32_t probes[4];
@@ -52,12 +52,12 @@ void test_golden_store_answers(void) {
     memset(&info, 0, sizeof info);
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
-    CHECK(info.format_version == 3 && info.dimension == 3);
+    CHECK(info.format_version == 4 && info.dimension == 3);
     CHECK(info.probes == 4 && info.input_probes == 5 && info.merged_probes == 1);
     CHECK(info.cells == 1 && info.inner_cells == 1 && info.outer_cells == 0);
     CHECK(info.index_bits == 16 && info.flags == TP_BUILD_NO_EXTRAPOLATION);
     CHECK(info.grid[0] == 1 && info.grid[1] == 1 && info.grid[2] == 1);
-    CHECK(info.bytes == 658);
+    CHECK(info.bytes == 720);
     for (k = 0; k < 3; ++k) {
         CHECK(info.origin[k] == kOrigin[k]);
         CHECK(info.bounds_min[k] == (float)kOrigin[k] && info.bounds_max[k] == (float)(kOrigin[k] + 1.0));
@@ -122,7 +122,7 @@ void test_golden_store_answers(void) {
     tp_store_release(store);
 
     /* The second golden blob has outer cells: far outside is answered from them, inside from the cell. */
-    store = load_golden("tetrahedron_outer_cells_v3.bin");
+    store = load_golden("tetrahedron_outer_cells_v4.bin");
     if (store) {
         static const float directions[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         tp_location location;
@@ -172,7 +172,7 @@ void test_golden_store_queries_and_errors(void) {
     static int32_t single_hints[M], batch_hints[M], padded_hints[2 * M];
     static uint32_t single_probes[4 * M], batch_probes[4 * M];
     static float single_weights[4 * M], batch_weights[4 * M];
-    tp_store* store = load_golden("tiny_store_v3.bin");
+    tp_store* store = load_golden("tiny_store_v4.bin");
     tp_batch_options options;
     tp_location location;
     tp_store_info info;
@@ -290,7 +290,7 @@ void test_golden_store_files(void) {
     static const char* const unicode_name = "harness_\xc3\xa9t\xc3\xa9_\xe5\x85\x89.tpb";
     static const char* const names[2] = {"harness_golden.tpb", NULL};
     size_t size = 0;
-    unsigned char* golden = read_golden("tiny_store_v3.bin", &size);
+    unsigned char* golden = read_golden("tiny_store_v4.bin", &size);
     tp_store *store = NULL, *copy = NULL;
     const void* blob;
     size_t blob_size = 0;
@@ -359,9 +359,10 @@ void test_golden_store_files(void) {
 /* Every truncated prefix and every byte changed in two ways is refused (or, for bytes the loader may
    accept, loads into a store that answers finitely); another format version is a version error. */
 void test_golden_store_bad_blobs(void) {
-    static const char* const format2[2] = {"tiny_store_v2.bin", "tetrahedron_outer_cells_v2.bin"};
+    static const char* const older[4] = {"tiny_store_v2.bin", "tetrahedron_outer_cells_v2.bin", "tiny_store_v3.bin",
+                                         "tetrahedron_outer_cells_v3.bin"};
     size_t size = 0, cut, at;
-    unsigned char* bytes = read_golden("tiny_store_v3.bin", &size);
+    unsigned char* bytes = read_golden("tiny_store_v4.bin", &size);
     tp_store* store = NULL;
     int refused = 1, safe = 1, f;
     if (!bytes) return;
@@ -406,18 +407,18 @@ void test_golden_store_bad_blobs(void) {
     repair_checksum(bytes, size);
     EXPECT_STATUS(tp_store_load(bytes, size, &store), TP_ERROR_VERSION);
     CHECK(strstr(tp_last_error(), "rebuild") != NULL && mentions_number(tp_last_error(), 7));
-    bytes[8] = 3;
+    bytes[8] = 4;
     repair_checksum(bytes, size);
     EXPECT_OK(tp_store_load(bytes, size, &store));
     tp_store_release(store);
     store = NULL;
     free(bytes);
-    /* Stores of format 2, as the previous library wrote them. */
-    for (f = 0; f < 2; ++f) {
-        bytes = read_golden(format2[f], &size);
+    /* Stores of formats 2 and 3, as earlier libraries wrote them. */
+    for (f = 0; f < 4; ++f) {
+        bytes = read_golden(older[f], &size);
         if (!bytes) continue;
         EXPECT_STATUS(tp_store_load(bytes, size, &store), TP_ERROR_VERSION);
-        CHECK(mentions_number(tp_last_error(), 2));
+        CHECK(mentions_number(tp_last_error(), f < 2 ? 2 : 3));
         CHECK(store == NULL);
         free(bytes);
     }

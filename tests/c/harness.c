@@ -93,7 +93,7 @@ double weight_of(const uint32_t probes[4], const float weights[4], uint32_t prob
 /* The blob checksum of store_format.h, to forge a consistent blob: FNV-1a 64 over little-endian 64-bit
    words, each step followed by hash ^= hash >> 29 (seeded with the size, the last word zero-padded),
    the checksum field read as zero. */
-#define CHECKSUM_OFFSET 104 /* format 3: after magic, 9 uint32 (axis included), grid, origin, bounds */
+#define CHECKSUM_OFFSET 104 /* formats 3 and 4: after magic, 9 uint32 (axis included), grid, origin, bounds */
 void repair_checksum(unsigned char* data, size_t size) {
     uint64_t hash = 14695981039346656037ull ^ (uint64_t)size;
     size_t i, k;
@@ -164,6 +164,7 @@ int main(int argc, char** argv) {
     test_small_sets();
     test_scene_and_bake();
     test_scene_files();
+    test_occlusion_and_leak_control();
 #endif
     printf("%d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;

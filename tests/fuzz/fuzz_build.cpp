@@ -6,6 +6,9 @@
 // line) is answered by that probe alone, with weight exactly 1, on every set that builds. Coordinates
 // come either from small integers times a scale plus an offset, so that duplicates, lines, planes and
 // lattices are common, or (mode bit 16) from raw float bits (denormals next to 1e19, tiny gaps).
+// Mode bit 64 adds scene data: occlusion bytes and a wall through the middle of the set (leak
+// control), which must keep every answer valid and every probe's own answer exact.
+#include "bake/scene.h"
 #include "bake/store_builder.h"
 #include "core/error.h"
 #include "core/store.h"
@@ -42,6 +45,30 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
 
     tetprobe::BuildSettings settings;
     settings.flags = (mode & 32) ? tetprobe::kFlagCompact : 0u;
+    const bool scene_data = mode & 64;
+    std::vector<uint8_t> occlusion(count * 4);
+    for (size_t b = 0; b < occlusion.size(); ++b) occlusion[b] = uint8_t(b * 37 + (mode >> 1));
+    tetprobe::Scene scene;
+    if (scene_data) {
+        settings.occlusion = occlusion.data();
+        settings.occlusion_lights = 1 + uint32_t(count % 4);
+        // A two-sided square in the plane x = (middle of the set), reaching well past its bounds.
+        float lo[3] = {positions[0], positions[1], positions[2]}, hi[3] = {lo[0], lo[1], lo[2]};
+        for (size_t p = 0; p < count; ++p)
+            for (int k = 0; k < 3; ++k) lo[k] = std::fmin(lo[k], positions[3 * p + k]), hi[k] = std::fmax(hi[k], positions[3 * p + k]);
+        const float x = 0.5f * lo[0] + 0.5f * hi[0], r = 1.0f + (hi[1] - lo[1]) + (hi[2] - lo[2]);
+        const float cy = 0.5f * lo[1] + 0.5f * hi[1], cz = 0.5f * lo[2] + 0.5f * hi[2];
+        const float v[12] = {x, cy - r, cz - r, x, cy + r, cz - r, x, cy + r, cz + r, x, cy - r, cz + r};
+        const uint32_t indices[6] = {0, 1, 2, 0, 2, 3};
+        tetprobe::Material m;
+        m.two_sided = true;
+        try {
+            scene.add_mesh(v, 4, indices, 2, {m}, nullptr);
+            settings.scene = &scene;
+        } catch (const tetprobe::Error&) {
+            // a set whose extent overflows the wall: no leak control, occlusion only
+        }
+    }
     tetprobe::StoreData d;
     try {
         d = tetprobe::build_store_data(positions.data(), 12, sh.data(), 108, count, settings);
@@ -70,6 +97,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
             sum += loc.weights[k];
         }
         if (!(std::fabs(sum - 1.0f) < 1e-5f)) __builtin_trap();
+        float answer[27], visible[4];
+        if (store->interpolate(&positions[3 * p], nullptr, answer, visible) != tetprobe::Status::ok) __builtin_trap();
+        for (float o : visible)
+            if (!(o >= 0.0f && o <= 1.0f)) __builtin_trap();
         const uint32_t survivor = store->input_to_stored(uint32_t(p));
         const float* stored = store->probe_position(survivor);
         bool as_given = true;

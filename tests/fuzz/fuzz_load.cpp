@@ -1,8 +1,10 @@
-// libFuzzer target: blob loading (format 3, fast and compact layouts; older formats are refused by
-// version) must reject or accept any bytes safely, and a store that loads must answer queries
-// without reading out of bounds. The first byte picks a mode: bit 0 repairs the checksum first, so
-// mutations reach the deeper checks (counts, indices, floats, orientations, neighbours); bit 1 flips
-// the layout flag (kFlagCompact) before that, so one seed of either layout reaches the other's loader.
+// libFuzzer target: blob loading (format 4, fast and compact layouts, with and without the occlusion
+// and leak-control sections; older formats are refused by version) must reject or accept any bytes
+// safely, and a store that loads must answer queries without reading out of bounds. The first byte
+// picks a mode: bit 0 repairs the checksum first, so mutations reach the deeper checks (counts,
+// indices, floats, orientations, neighbours, leak lists); bit 1 flips the layout flag (kFlagCompact)
+// before that, so one seed of either layout reaches the other's loader; bits 2 and 3 flip the
+// occlusion and leak-control flags the same way.
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_format.h"
@@ -16,10 +18,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
     const bool repair_checksum = data[0] & 1;
     std::vector<uint8_t> blob(data + 1, data + size);
-    if ((data[0] & 2) && blob.size() >= sizeof(tetprobe::StoreHeader)) {
+    if ((data[0] & 14) && blob.size() >= sizeof(tetprobe::StoreHeader)) {
         uint32_t flags;
         std::memcpy(&flags, blob.data() + offsetof(tetprobe::StoreHeader, flags), sizeof flags);
-        flags ^= tetprobe::kFlagCompact;
+        if (data[0] & 2) flags ^= tetprobe::kFlagCompact;
+        if (data[0] & 4) flags ^= tetprobe::kFlagOcclusion;
+        if (data[0] & 8) flags ^= tetprobe::kFlagLeakControl;
         std::memcpy(blob.data() + offsetof(tetprobe::StoreHeader, flags), &flags, sizeof flags);
     }
     if (repair_checksum && blob.size() >= tetprobe::kHeaderSize) {
@@ -51,7 +55,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
                 if (!std::isfinite(loc.weights[k]) || loc.probes[k] >= h.probe_count) __builtin_trap();
             if (loc.cell < 0 || uint32_t(loc.cell) >= h.cell_count) __builtin_trap();
         }
-        store->interpolate(p, &hint, sh);
+        float visible[4];
+        if (store->interpolate(p, &hint, sh, visible) == tetprobe::Status::ok)
+            for (float o : visible)
+                if (!(o >= 0.0f && o <= 1.0f)) __builtin_trap();
         hint = int32_t(size) - 7;  // arbitrary, possibly invalid hints must be safe too
     }
     return 0;

@@ -37,7 +37,7 @@ def header_prototypes():
 def parse_declaration(declaration):
     """(base type, pointer depth, const, array length or None, name) of a C declaration like
     'const float position[3]' or 'tp_store** out_store'."""
-    match = re.fullmatch(r"(const\s+)?(\w+)\s*(\**)\s*(\w*)\s*(?:\[(\w+)\])?", declaration.strip())
+    match = re.fullmatch(r"(const\s+)?(?:struct\s+)?(\w+)\s*(\**)\s*(\w*)\s*(?:\[(\w+)\])?", declaration.strip())
     assert match, "cannot parse %r" % declaration
     const, base, stars, name, length = match.groups()
     depth = len(stars) + (1 if length else 0)

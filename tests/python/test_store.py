@@ -304,7 +304,7 @@ def test_context_manager_and_repr():
     assert isinstance(tetprobe.Error(1, "x"), RuntimeError)
 
 
-# ---- format 3: layouts, batch options, version
+# ---- format 4: layouts, batch options, version
 
 def dense_weights(indices, weights, probes):
     """Per-query weights as a dense [M, probes] matrix (slot order and repeated unused slots drop out)."""
@@ -327,7 +327,7 @@ def test_compact_layout_answers_like_the_fast_layout(index32):
     assert not fast_info["compact"] and compact_info["compact"]
     assert compact_info["flags"] & tetprobe._native.BUILD_COMPACT
     assert not fast_info["flags"] & tetprobe._native.BUILD_COMPACT
-    assert fast_info["format_version"] == 3 and compact_info["format_version"] == 3
+    assert fast_info["format_version"] == 4 and compact_info["format_version"] == 4
     assert compact_info["bytes"] < fast_info["bytes"]
     for key in ("probes", "cells", "inner_cells", "outer_cells", "index_bits"):
         assert compact_info[key] == fast_info[key], key
@@ -421,12 +421,12 @@ def test_outside_batch_names_the_first_outside_query():
             assert re.search(r"\b37\b", raised.value.message), raised.value.message
 
 
-def test_format_2_blob_is_refused_with_a_version_error():
+def test_older_format_blobs_are_refused_with_a_version_error():
     positions, sh = random_set(50, 241)
     for compact in (False, True):
         blob = bytearray(Store.build(positions, sh, compact=compact).to_bytes())
-        assert struct.unpack_from("<I", blob, 8)[0] == 3
-        for version in (2, 1, 4, 99):
+        assert struct.unpack_from("<I", blob, 8)[0] == 4
+        for version in (3, 2, 1, 5, 99):
             old = bytearray(blob)
             struct.pack_into("<I", old, 8, version)  # nothing else fixed: not even the checksum
             with pytest.raises(Error) as raised:

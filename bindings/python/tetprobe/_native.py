@@ -30,6 +30,7 @@ LIGHT_POINT = 1
 LIGHT_SPOT = 2
 LIGHT_MODE_BAKED = 0
 LIGHT_MODE_REALTIME = 1
+LIGHT_MODE_MIXED = 2
 SH_ORDER_L2 = 0
 SH_ORDER_L1 = 1
 SH_ORDER_ZH3 = 2
@@ -42,7 +43,9 @@ ProgressFn = CFUNCTYPE(c_int, c_void_p, c_float, c_char_p)
 
 class BuildOptions(Structure):
     _fields_ = [("struct_size", c_uint32), ("flags", c_uint32), ("merge_tolerance", c_double),
-                ("flat_tolerance", c_double), ("progress", ProgressFn), ("progress_user", c_void_p)]
+                ("flat_tolerance", c_double), ("progress", ProgressFn), ("progress_user", c_void_p),
+                ("occlusion", c_void_p), ("occlusion_stride", c_size_t), ("occlusion_lights", c_uint32),
+                ("scene", c_void_p)]
 
 
 class StoreInfo(Structure):
@@ -50,7 +53,8 @@ class StoreInfo(Structure):
                 ("probes", c_uint32), ("input_probes", c_uint32), ("merged_probes", c_uint32),
                 ("cells", c_uint32), ("inner_cells", c_uint32), ("outer_cells", c_uint32),
                 ("index_bits", c_uint32), ("flags", c_uint32), ("grid", c_uint32 * 3), ("bytes", c_uint64),
-                ("origin", c_double * 3), ("bounds_min", c_float * 3), ("bounds_max", c_float * 3)]
+                ("origin", c_double * 3), ("bounds_min", c_float * 3), ("bounds_max", c_float * 3),
+                ("occlusion_lights", c_uint32), ("leak_edges", c_uint32)]
 
 
 class BatchOptions(Structure):
@@ -124,6 +128,9 @@ PROTOTYPES = (
     ("tp_store_get_info", _status, (_handle, POINTER(StoreInfo))),
     ("tp_store_probe_sh", _status, (_handle, c_uint32, _buffer)),
     ("tp_store_interpolate", _status, (_handle, _buffer, POINTER(c_int32), _buffer)),
+    ("tp_store_interpolate_occlusion", _status, (_handle, _buffer, POINTER(c_int32), _buffer, _buffer)),
+    ("tp_store_interpolate_occlusion_batch", _status, (_handle, c_size_t, _buffer, c_size_t, _buffer, c_size_t,
+                                                       _buffer, c_size_t, _buffer, c_size_t, POINTER(BatchOptions))),
     ("tp_batch_options_init", _status, (POINTER(BatchOptions),)),
     ("tp_store_interpolate_batch", _status, (_handle, c_size_t, _buffer, c_size_t, _buffer, c_size_t, _buffer,
                                              c_size_t, POINTER(BatchOptions))),
@@ -161,6 +168,8 @@ PROTOTYPES = (
     ("tp_bake_plan", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), POINTER(EffectsPlan),
                                POINTER(c_char), c_size_t)),
     ("tp_bake", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), _buffer, c_size_t)),
+    ("tp_bake_occlusion", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), _buffer, c_size_t,
+                                    POINTER(c_uint32))),
 )
 
 _LIBRARY_NAME = {"darwin": "libtetprobe.dylib", "win32": "tetprobe.dll"}.get(sys.platform, "libtetprobe.so")

@@ -11,7 +11,8 @@ from ._handle import NativeHandle
 from ._arrays import Progress, rows, vector
 from ._native import SH_FLOATS, check, lib
 
-_MODES = {"baked": _native.LIGHT_MODE_BAKED, "realtime": _native.LIGHT_MODE_REALTIME}
+_MODES = {"baked": _native.LIGHT_MODE_BAKED, "realtime": _native.LIGHT_MODE_REALTIME,
+          "mixed": _native.LIGHT_MODE_MIXED}
 
 
 def _mode(mode):
@@ -91,8 +92,9 @@ class Scene(NativeHandle):
     def add_directional_light(self, direction, color, intensity=1.0, mode="baked", shadows=True):
         """Adds a directional light travelling along direction=(x, y, z) (need not be unit length) of linear
         color=(r, g, b); intensity scales color to the irradiance on a surface facing the light.
-        mode: "baked" (direct and bounced light go into the probes) or "realtime" (the engine draws the
-        direct light; only its bounced light is baked); shadows: whether it casts shadows. Returns the
+        mode: "baked" (direct and bounced light go into the probes), "realtime" (the engine draws the
+        direct light; only its bounced light is baked) or "mixed" (baked as realtime, plus its occlusion
+        probes from bake_occlusion; at most four per scene); shadows: whether it casts shadows. Returns the
         light's id (int)."""
         return self._add_light(_native.LIGHT_DIRECTIONAL, color, intensity, mode, shadows, direction=direction)
 
@@ -198,3 +200,20 @@ def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, pro
     result["shadows"] = bool(plan.shadows)
     result["text"] = text.value.decode("utf-8", "replace")
     return result
+
+
+def bake_occlusion(scene, positions=None, progress=None):
+    """Occlusion probes at positions[N, 3] (float32 world units; None = the scene's probes) ->
+    (occlusion[N, 4] uint8, mixed_lights).
+
+    progress(fraction, stage) may return True to cancel (Error(CANCELLED)). Byte i is 255 x the visibility of the scene's i-th mixed light from the position (one shadow ray:
+    0 or 255), 255 for channels without a light; pass it to Store.build(..., occlusion=...)."""
+    points, stride = _positions(scene, positions)
+    options, callback = _options(1, 0, 0, 0, progress)
+    out = np.empty((points.shape[0], 4), dtype=np.uint8)
+    lights = ctypes.c_uint32()
+    status = lib.tp_bake_occlusion(scene._live(), points, stride, points.shape[0], ctypes.byref(options),
+                                   out, 4, ctypes.byref(lights))
+    callback.reraise()
+    check(status)
+    return out, lights.value

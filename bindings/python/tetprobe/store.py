@@ -28,7 +28,7 @@ class Store(NativeHandle):
 
     @classmethod
     def build(cls, positions, sh=None, *, compact=False, extrapolate=True, index32=False, merge_tolerance=None,
-              flat_tolerance=None, progress=None):
+              flat_tolerance=None, progress=None, scene=None, occlusion=None, occlusion_lights=None):
         """Builds a store from probe positions[N, 3] and their SH sh[N, 27] (None = all zeros).
 
         positions: float32 world units (other number dtypes are converted), one row per probe; any row
@@ -41,7 +41,11 @@ class Store(NativeHandle):
         index32=True forces 32-bit indices; merge_tolerance and flat_tolerance are fractions of the
         set's bounding-box diagonal (None = the library's defaults, 1e-6 and 1e-4); progress is a
         callable progress(fraction, stage) called on this thread that may return True to cancel
-        (Error(CANCELLED)). Raises ValueError/TypeError for a wrong shape or dtype, Error otherwise."""
+        (Error(CANCELLED)). scene (a Scene) turns on leak control: probe pairs of a cell that cannot see
+        each other are stored and queries weigh down the probe behind the wall. occlusion[N, 4] uint8
+        (bake_occlusion's output) stores occlusion probes of occlusion_lights mixed lights (the count
+        bake_occlusion returns; None = all 4 channels). Raises ValueError/TypeError for a wrong shape or
+        dtype, Error otherwise."""
         points, point_stride, _ = rows(positions, 3, "positions")
         coefficients, sh_stride = None, 0
         if sh is not None:
@@ -57,6 +61,16 @@ class Store(NativeHandle):
             options.merge_tolerance = merge_tolerance
         if flat_tolerance is not None:
             options.flat_tolerance = flat_tolerance
+        if scene is not None:
+            options.scene = scene._live()
+        occlusion_bytes = None
+        if occlusion is not None:
+            occlusion_bytes = np.ascontiguousarray(occlusion, dtype=np.uint8)
+            if occlusion_bytes.shape != (points.shape[0], 4):
+                raise ValueError("occlusion must be [%d, 4] uint8 (got %s)" % (points.shape[0], occlusion_bytes.shape))
+            options.occlusion = occlusion_bytes.ctypes.data
+            options.occlusion_stride = 4
+            options.occlusion_lights = 4 if occlusion_lights is None else int(occlusion_lights)
         callback = Progress(progress)
         options.progress = callback.function
         handle = ctypes.c_void_p()
@@ -93,11 +107,12 @@ class Store(NativeHandle):
 
     def info(self):
         """Counts and layout as a dict: probes, input_probes, merged_probes, cells, inner_cells,
-        outer_cells, index_bits (16 or 32), bytes (the blob's size), format_version (3), dimension of
+        outer_cells, index_bits (16 or 32), bytes (the blob's size), format_version (4), dimension of
         the probe set (0 point, 1 line, 2 flat, 3 general), flags (TP_BUILD_* bits of the blob;
         BUILD_INDEX32 whenever it uses 32-bit indices), compact (True for the compact layout),
         extrapolation, grid (cold-start grid cells along x, y, z), origin (the local origin, world
-        units, float64), bounds_min and bounds_max (world units, float32 values)."""
+        units, float64), bounds_min and bounds_max (world units, float32 values), occlusion_lights
+        (mixed lights with occlusion probes, 0-4) and leak_edges (probe pairs stored for leak control)."""
         info = _native.StoreInfo()
         info.struct_size = ctypes.sizeof(info)
         check(lib.tp_store_get_info(self._live(), ctypes.byref(info)))
@@ -119,6 +134,8 @@ class Store(NativeHandle):
             "origin": tuple(info.origin),
             "bounds_min": tuple(info.bounds_min),
             "bounds_max": tuple(info.bounds_max),
+            "occlusion_lights": info.occlusion_lights,
+            "leak_edges": info.leak_edges,
         }
 
     def probe_sh(self, probe):
@@ -164,7 +181,7 @@ class Store(NativeHandle):
         options.flags = _native.BATCH_CHAIN_HINTS if chain_hints else 0
         return options
 
-    def interpolate(self, points, hints=None, threads=1, chain_hints=False):
+    def interpolate(self, points, hints=None, threads=1, chain_hints=False, occlusion=False):
         """Interpolated SH at points[M, 3] -> (sh[M, 27] float32, hints[M] int32).
 
         points: float32 world units (other number dtypes are converted), any row stride. sh rows are
@@ -176,17 +193,30 @@ class Store(NativeHandle):
         query's cell, for points given in a spatially coherent order; the returned hints are then None.
         A single point of shape [3] (with hints None or one int) is one tp_store_interpolate call and
         gives (sh[27], hint int). Points outside a store built with extrapolate=False raise
-        Error(OUTSIDE) naming the first."""
+        Error(OUTSIDE) naming the first. occlusion=True returns (sh, occlusion, hints) with
+        occlusion[M, 4] float32 in [0, 1] (or [4] for a single point): the mixed lights' interpolated
+        visibility (1 for channels without a light)."""
         data, stride, single = rows(points, 3, "points")
         if single and not chain_hints:
             cell = self._single_hint(hints)
             out = np.empty(SH_FLOATS, dtype=np.float32)
+            if occlusion:
+                visible = np.empty(4, dtype=np.float32)
+                check(lib.tp_store_interpolate_occlusion(self._live(), data, ctypes.byref(cell), out, visible))
+                return out, visible, cell.value
             check(lib.tp_store_interpolate(self._live(), data, ctypes.byref(cell), out))
             return out, cell.value
         count = data.shape[0]
         cells = self._hints(hints, count, chain_hints)
         options = self._batch_options(threads, chain_hints)
         out = np.empty((count, SH_FLOATS), dtype=np.float32)
+        if occlusion:
+            visible = np.empty((count, 4), dtype=np.float32)
+            check(lib.tp_store_interpolate_occlusion_batch(self._live(), count, data, stride, cells, 4, out,
+                                                           SH_FLOATS * 4, visible, 16, ctypes.byref(options)))
+            if single:
+                return out[0], visible[0], (None if cells is None else int(cells[0]))
+            return out, visible, cells
         check(lib.tp_store_interpolate_batch(self._live(), count, data, stride, cells, 4,
                                              out, SH_FLOATS * 4, ctypes.byref(options)))
         if single:

@@ -1,0 +1,79 @@
+#include "bake/leak_edges.h"
+
+#include "bake/ray_caster.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace tetprobe {
+
+namespace {
+
+// The first hit from `from` towards `to` as a fraction of their distance, or -1 if none.
+double first_hit(const RayCaster& caster, const float from[3], const float to[3]) {
+    double d[3], length = 0;
+    for (int k = 0; k < 3; ++k) {
+        d[k] = double(to[k]) - from[k];
+        length += d[k] * d[k];
+    }
+    length = std::sqrt(length);
+    // Embree's rays must start within +-1.8e18 and have a finite reach (it asserts otherwise): a pair
+    // beyond that range is not tested (and stays unblocked).
+    if (!(length > 0) || !(length < kLargestRayCoordinate)) return -1;
+    for (int k = 0; k < 3; ++k)
+        if (!(std::fabs(from[k]) < kLargestRayCoordinate)) return -1;
+    const float direction[3] = {float(d[0] / length), float(d[1] / length), float(d[2] / length)};
+    RayHit hit;
+    if (!caster.intersect(from, direction, 0.0f, float(length), &hit)) return -1;
+    return std::min(1.0, double(hit.distance) / length);
+}
+
+}  // namespace
+
+size_t add_leak_edges(const Scene& scene, StoreData& data) {
+    data.leak_offsets.clear();
+    data.leak_edges.clear();
+    if (scene.meshes().empty()) return 0;
+    // Every distinct probe pair of a cell (outer cells add no new pair: their facet is an inner one).
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    for (size_t c = 0; c < data.inner_cell_count; ++c) {
+        const uint32_t* v = &data.cell_vertices[4 * c];
+        for (int i = 0; i < 4; ++i)
+            for (int j = i + 1; j < 4; ++j)
+                if (v[i] < kOuter32 && v[j] < kOuter32 && v[i] != v[j])
+                    pairs.emplace_back(std::min(v[i], v[j]), std::max(v[i], v[j]));
+    }
+    std::sort(pairs.begin(), pairs.end());
+    pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+
+    const RayCaster caster(scene, data.origin);
+    const uint32_t probes = data.probe_count();
+    std::vector<LeakEdge> edges;
+    std::vector<uint32_t> owners;
+    for (const auto& pair : pairs) {
+        const float* a = &data.positions[3 * size_t(pair.first)];
+        const float* b = &data.positions[3 * size_t(pair.second)];
+        const double from_a = first_hit(caster, a, b), from_b = first_hit(caster, b, a);
+        if (from_a < 0 && from_b < 0) continue;
+        // The wall spans [near, far] along a->b; a hit found one way only is a wall of no thickness.
+        double near = from_a >= 0 ? from_a : 1.0 - from_b, far = from_b >= 0 ? 1.0 - from_b : from_a;
+        if (near > far) std::swap(near, far);
+        LeakEdge edge;
+        edge.partner = pair.second;
+        edge.start = float(std::max(0.0, near - kLeakRampMargin));
+        edge.end = float(std::min(1.0, far + kLeakRampMargin));
+        edges.push_back(edge);
+        owners.push_back(pair.first);
+    }
+    if (edges.empty()) return 0;
+    // Pairs are sorted by (low, high): the lists come out grouped by owner, partners increasing.
+    data.leak_offsets.assign(size_t(probes) + 1, 0);
+    for (uint32_t owner : owners) ++data.leak_offsets[size_t(owner) + 1];
+    for (uint32_t p = 0; p < probes; ++p) data.leak_offsets[p + 1] += data.leak_offsets[p];
+    data.leak_edges = std::move(edges);
+    return data.leak_edges.size();
+}
+
+}  // namespace tetprobe

@@ -1,0 +1,20 @@
+// Leak control at build time: every edge of the store's cells whose two probes cannot see each other
+// (a triangle of the scene crosses the segment between them) becomes a LeakEdge with the ramp over
+// which a query's visibility passes from one probe to the other (store_format.h, core/leak_control.h).
+#pragma once
+
+#include "bake/scene.h"
+#include "core/store_data.h"
+
+namespace tetprobe {
+
+// Fraction of an edge by which the ramp reaches beyond the wall on either side: visibility changes
+// over at least a tenth of the edge, so that it varies continuously (and not as a step) near a thin wall.
+constexpr double kLeakRampMargin = 0.05;
+
+// Casts a ray each way along every cell edge (Embree, local coordinates) and fills data.leak_offsets
+// and data.leak_edges; leaves both empty when no edge is blocked (the store then has no leak
+// sections). Needs positions, origin and cells filled. Returns the number of blocked edges.
+size_t add_leak_edges(const Scene& scene, StoreData& data);
+
+}  // namespace tetprobe
