@@ -1,5 +1,6 @@
 // The initialisers of the public structs, in both libraries (core/option_defaults.h holds the values).
 #include "capi/boundary.h"
+#include "capi/sh_eval_options_struct.h"
 #include "capi/struct_defaults.h"
 
 extern "C" {

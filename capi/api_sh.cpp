@@ -2,10 +2,10 @@
 #include "boundary.h"
 #include "core/sh.h"
 #include "core/sh_eval_options.h"
-#include "struct_defaults.h"
+#include "core/sh_window.h"
+#include "sh_eval_options_struct.h"
 
 #include <cmath>
-#include <cstddef>
 #include <string>
 
 namespace tetprobe {
@@ -24,47 +24,6 @@ tp_status unit_direction(const float in[3], float out[3], const char* name) {
 tp_status require_finite(const float* values, int count, const char* name) {
     for (int i = 0; i < count; ++i)
         if (!std::isfinite(values[i])) return fail(TP_ERROR_INVALID_ARGUMENT, std::string(name) + " is not finite");
-    return TP_OK;
-}
-
-// One set of values: the C ABI's order and window constants are the run time's enumerators.
-static_assert(TP_SH_ORDER_L2 == uint32_t(ShOrder::l2) && TP_SH_ORDER_L1 == uint32_t(ShOrder::l1) &&
-                  TP_SH_ORDER_ZH3 == uint32_t(ShOrder::zh3),
-              "TP_SH_ORDER_* must equal ShOrder");
-static_assert(TP_SH_WINDOW_NONE == uint32_t(ShWindow::none) && TP_SH_WINDOW_SLOAN == uint32_t(ShWindow::sloan) &&
-                  TP_SH_WINDOW_NONNEGATIVE == uint32_t(ShWindow::nonnegative),
-              "TP_SH_WINDOW_* must equal ShWindow");
-
-// Whether a caller's struct of struct_size bytes reaches to the end of the field at offset/size.
-bool has_field(uint32_t struct_size, size_t offset, size_t size) { return size_t(struct_size) >= offset + size; }
-
-#define TP_SH_OPTION_FIELD(options, field) \
-    has_field((options)->struct_size, offsetof(tp_sh_eval_options, field), sizeof((options)->field))
-
-// The run time's options from the caller's (NULL = defaults); fields past struct_size keep their defaults.
-tp_status read_eval_options(const tp_sh_eval_options* options, ShEvalOptions& out) {
-    out = ShEvalOptions{};
-    if (!options) return TP_OK;
-    if (!TP_SH_OPTION_FIELD(options, order))
-        return fail(TP_ERROR_INVALID_ARGUMENT, "options->struct_size " + std::to_string(options->struct_size) +
-                                                   " is too small (call tp_sh_eval_options_init)");
-    if (options->order > TP_SH_ORDER_ZH3)
-        return fail(TP_ERROR_INVALID_ARGUMENT, "options->order " + std::to_string(options->order) +
-                                                   " is not a TP_SH_ORDER_* value");
-    out.order = ShOrder(options->order);
-    if (TP_SH_OPTION_FIELD(options, window)) {
-        if (options->window > TP_SH_WINDOW_NONNEGATIVE)
-            return fail(TP_ERROR_INVALID_ARGUMENT, "options->window " + std::to_string(options->window) +
-                                                       " is not a TP_SH_WINDOW_* value");
-        out.window = ShWindow(options->window);
-    }
-    if (out.window == ShWindow::sloan) {
-        const float strength = TP_SH_OPTION_FIELD(options, window_strength) ? options->window_strength : 0.0f;
-        if (!std::isfinite(strength) || strength < 0)
-            return fail(TP_ERROR_INVALID_ARGUMENT, "options->window_strength " + std::to_string(strength) +
-                                                       " must be finite and >= 0");
-        out.window_strength = strength;
-    }
     return TP_OK;
 }
 
@@ -130,7 +89,7 @@ TP_API tp_status tp_sh_eval_irradiance_ex(const float sh[27], const float normal
     TP_REQUIRE_NOT_NULL(normal);
     TP_REQUIRE_NOT_NULL(out_rgb);
     ShEvalOptions settings;
-    if (tp_status s = read_eval_options(options, settings)) return s;
+    if (tp_status s = read_sh_eval_options(options, settings)) return s;
     if (settings.window == ShWindow::nonnegative)
         if (tp_status s = require_finite(sh, 27, "sh")) return s;
     float n[3];
@@ -144,7 +103,7 @@ TP_API tp_status tp_sh_apply_options(float sh[27], const tp_sh_eval_options* opt
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(sh);
     ShEvalOptions settings;
-    if (tp_status s = read_eval_options(options, settings)) return s;
+    if (tp_status s = read_sh_eval_options(options, settings)) return s;
     if (settings.window == ShWindow::nonnegative)
         if (tp_status s = require_finite(sh, 27, "sh")) return s;
     sh_apply_eval_options(sh, settings);
@@ -159,7 +118,7 @@ TP_API tp_status tp_sh_min_irradiance(const float sh[27], const tp_sh_eval_optio
     TP_REQUIRE_NOT_NULL(out_min_rgb);
     TP_REQUIRE_NOT_NULL(out_normal);
     ShEvalOptions settings;
-    if (tp_status s = read_eval_options(options, settings)) return s;
+    if (tp_status s = read_sh_eval_options(options, settings)) return s;
     if (tp_status s = require_finite(sh, 27, "sh")) return s;
     sh_min_irradiance_with_options(sh, settings, out_min_rgb, out_normal);
     return TP_OK;
@@ -172,7 +131,7 @@ TP_API tp_status tp_sh_nonnegative_window_strength(const float sh[27], const tp_
     TP_REQUIRE_NOT_NULL(sh);
     TP_REQUIRE_NOT_NULL(out_strength);
     ShEvalOptions settings;
-    if (tp_status s = read_eval_options(options, settings)) return s;
+    if (tp_status s = read_sh_eval_options(options, settings)) return s;
     if (tp_status s = require_finite(sh, 27, "sh")) return s;
     float ordered[27];
     for (int i = 0; i < 27; ++i) ordered[i] = sh[i];

@@ -1,10 +1,10 @@
 // The public structs as tp_*_init fills them in, from the values in core/option_defaults.h; the
-// initialisers of both libraries and the bake's scene defaults read them from here.
+// initialisers of both libraries and the bake's scene defaults read them from here
+// (tp_sh_eval_options: capi/sh_eval_options_struct.h, next to its reading).
 #pragma once
 
 #include "capi/tetprobe.h"
 #include "core/option_defaults.h"
-#include "core/sh_eval_options.h"
 
 #include <cmath>
 
@@ -49,17 +49,6 @@ inline tp_light default_light() {
     light.inner_angle = 30.0f;
     light.outer_angle = 45.0f;
     return light;
-}
-
-// L2, no window: the run time's ShEvalOptions defaults.
-inline tp_sh_eval_options default_sh_eval_options() {
-    const ShEvalOptions defaults;
-    tp_sh_eval_options options{};
-    options.struct_size = sizeof(tp_sh_eval_options);
-    options.order = uint32_t(defaults.order);
-    options.window = uint32_t(defaults.window);
-    options.window_strength = defaults.window_strength;
-    return options;
 }
 
 }  // namespace tetprobe

@@ -282,7 +282,12 @@ TP_API tp_status tp_sh_add_directional(float sh[27], const float direction[3], c
    then scales band l by w_l = 1 / (1 + s (l (l + 1))^2), the least-squares fit penalised by s times the
    squared Laplacian (P.-P. Sloan, "Deringing Spherical Harmonics", SIGGRAPH Asia 2017 technical briefs):
    band 0 is never changed and s = 0 is the identity. Every choice is a rewrite of the 27 coefficients
-   (tp_sh_apply_options), so an engine may apply it once per probe and keep its plain L2 evaluation. */
+   (tp_sh_apply_options) followed by the plain L2 evaluation. Only the linear rewrites, L1 and the Sloan
+   window of a fixed strength (and the two together), commute with interpolation: applied once to every
+   probe before the store is built, the interpolated SH is the same (to float rounding) as applying
+   them per query. ZH3 (its axis and zonal term depend on the SH) and TP_SH_WINDOW_NONNEGATIVE (its
+   strength is chosen per SH) do not: applied per probe they give a different interpolant (still
+   continuous), so apply them to the interpolated SH when the per-query result is wanted. */
 #define TP_SH_ORDER_L2  0u  /* all 27 floats (the default) */
 #define TP_SH_ORDER_L1  1u  /* bands 0 and 1 only: 12 floats (4 per channel) */
 /** L1 plus a zonal L2 term estimated from the L1 data (T. Roughton, P.-P. Sloan et al., "ZH3: Quadratic
@@ -294,12 +299,14 @@ TP_API tp_status tp_sh_add_directional(float sh[27], const float direction[3], c
 #define TP_SH_ORDER_ZH3 2u
 #define TP_SH_WINDOW_NONE        0u
 #define TP_SH_WINDOW_SLOAN       1u  /* Sloan's deringing window of strength window_strength */
-/** The smallest window that keeps the irradiance non-negative: the strength s is bisected over the
-    floats until it is adjacent to one that leaves a negative minimum, s being the one whose proven
-    lower bound (see tp_sh_min_irradiance) is >= 0 in every channel with a positive L0 (no window can
-    lift a channel whose L0 <= 0, so those are left out). 0 if already non-negative; it may be
-    +infinity (only band 0 kept) when no finite float strength suffices. Costs tens of minimum
-    searches: apply it once with tp_sh_apply_options rather than per query. */
+/** The smallest window under which tp_sh_eval_irradiance (this library's float evaluation, in its
+    operation order) is provably >= 0 at every unit normal: a channel passes when the proven lower
+    bound of its minimum (see tp_sh_min_irradiance) clears a proven bound of the float evaluation's
+    rounding (21 * 2^-24 times the sum of band factor * |coefficient| * basis magnitude); s is bisected
+    over the floats until it is adjacent to one that fails, s being one that passes in every channel
+    with a positive L0 (no window can lift a channel whose L0 <= 0, so those are left out). 0 if
+    already passing; it may be +infinity (only band 0 kept) when no finite float strength suffices.
+    Costs tens of minimum searches: apply it once with tp_sh_apply_options rather than per query. */
 #define TP_SH_WINDOW_NONNEGATIVE 2u
 
 typedef struct tp_sh_eval_options {

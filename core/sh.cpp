@@ -1,5 +1,7 @@
 #include "core/sh.h"
 
+#include <cmath>
+
 namespace tetprobe {
 
 namespace {
@@ -45,7 +47,8 @@ void sh_eval_radiance(const float sh[27], const float d[3], float out_rgb[3]) {
     }
 }
 
-// The first Count coefficients of each channel against the convolved basis, summed in order.
+// The first Count coefficients of each channel against the convolved basis, summed in order
+// (sh_irradiance_rounding_bound counts this path's roundings: change both together).
 template <int Count>
 void sh_eval_irradiance_first(const float sh[27], const float n[3], float out_rgb[3]) {
     float basis[9];
@@ -68,6 +71,20 @@ void sh_eval_irradiance_bands(const float sh[27], const float n[3], int bands, f
         case 2: sh_eval_irradiance_first<4>(sh, n, out_rgb); return;
         default: sh_eval_irradiance_first<9>(sh, n, out_rgb); return;
     }
+}
+
+double sh_irradiance_rounding_bound(const float channel[9]) {
+    // Each term's path in sh_eval_irradiance_first rounds at most 16 times: basis constant, up to three
+    // operations on x, y, z (3z z - 1 and x x - y y err by at most 3u times 3z^2 + 1 and x^2 + y^2,
+    // hence the factors 4 and 1 below), the multiply by the constant, band factor and its multiply,
+    // the coefficient multiply and 8 additions: at most gamma_16 < 16.0001u of S. A normal of length
+    // 1 + d moves each term of degree <= 2 by at most (2|d| + d^2) of it: 4.0002u of S. 21u covers
+    // both, their product and the double rounding of S and of the minimum it is compared with.
+    const double largest_basis[9] = {kShY00, kShY1, kShY1, kShY1, kShY2, kShY2, 4.0 * kShY20, kShY2, kShY22};
+    double sum = 0;
+    for (int i = 0; i < 9; ++i)
+        sum += sh_cosine_lobe_band(kShBandOfCoefficient[i]) * std::fabs(double(channel[i])) * largest_basis[i];
+    return 21.0 * std::ldexp(sum, -24);
 }
 
 void sh_add_ambient(float sh[27], const float rgb[3]) {

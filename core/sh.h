@@ -32,6 +32,11 @@ void sh_eval_irradiance(const float sh[27], const float n[3], float out_rgb[3]);
 // Irradiance from the first `bands` bands (1, 2 or 3) only: bit for bit what sh_eval_irradiance gives
 // when the higher bands are zero, without reading them.
 void sh_eval_irradiance_bands(const float sh[27], const float n[3], int bands, float out_rgb[3]);
+// A proven bound on how far one channel's sh_eval_irradiance (in float) lies from the exact irradiance
+// of the same float coefficients at n / |n|, for any float normal n with ||n| - 1| <= 2^-23 (a unit
+// vector rounded to float, or normalised in double and rounded): 21 u S with u = 2^-24 and S the sum
+// over coefficients of band factor * |coefficient| * the largest magnitude its basis path reaches.
+double sh_irradiance_rounding_bound(const float channel[9]);
 // Adds uniform radiance rgb from all directions.
 void sh_add_ambient(float sh[27], const float rgb[3]);
 // Adds a delta of radiance arriving from -travel_direction whose irradiance facing it is rgb.

@@ -101,11 +101,20 @@ def test_nonnegative_window():
     # once the window holds it there, so the strength is the root of 1/4 - w1/2 + 5/16 w2 = 0.
     minima, _ = sh.min_irradiance(light)
     assert minima == pytest.approx((3 / 32 - 1 / (4 * 15 / 8)) * np.array([1.0, 0.5, 2.0]), rel=1e-5)
+    # The window must also clear the float evaluation's proven rounding bound, 21 * 2^-24 * S with
+    # S = sum of band factor * |coefficient| * basis magnitude (tetprobe.h), here per unit E.
+    toward_light = -np.array([0.36, -0.48, 0.8])
+    x, y, z = toward_light
+    coefficients = np.abs([Y[0], Y[1] * y, Y[1] * z, Y[1] * x, Y[2] * x * y, Y[2] * y * z, Y[3] * (3 * z * z - 1),
+                           Y[2] * x * z, Y[4] * (x * x - y * y)])
+    magnitudes = np.array([Y[0], Y[1], Y[1], Y[1], Y[2], Y[2], 4 * Y[3], Y[2], Y[4]])
     low, high = 0.0, 1.0
     for _ in range(60):
         mid = 0.5 * (low + high)
-        low, high = (low, mid) if 0.25 - 0.5 / (1 + 4 * mid) + 0.3125 / (1 + 36 * mid) >= 0 else (mid, high)
-    assert sh.nonnegative_window_strength(light, "l2") == pytest.approx(high, rel=1e-5)
+        windows = np.array([1.0] + [1 / (1 + 4 * mid)] * 3 + [1 / (1 + 36 * mid)] * 5)
+        margin = 21 * 2.0 ** -24 * (BAND_FACTORS * coefficients * windows * magnitudes).sum()
+        low, high = (low, mid) if 0.25 - 0.5 * windows[1] + 0.3125 * windows[4] >= margin else (mid, high)
+    assert sh.nonnegative_window_strength(light, "l2") == pytest.approx(high, rel=2e-6)
     assert sh.nonnegative_window_strength(sh.ambient([1, 2, 3]), "l2") == 0.0
     rng = np.random.default_rng(4)
     rows = random_sh(rng, 8)
@@ -120,6 +129,22 @@ def test_nonnegative_window():
         assert irradiance(row, directions).min() >= 0
     after, _ = sh.min_irradiance(rows, "l2", "nonnegative")
     assert after.min() >= 0
+
+
+@pytest.mark.parametrize("order", ["l2", "l1", "zh3"])
+def test_nonnegative_window_keeps_the_float_evaluation_non_negative(order):
+    """The shipped float evaluation through the C ABI, not a double reference: at the normal
+    min_irradiance reports and at 2000 lattice normals, for 300 random SH per order."""
+    rng = np.random.default_rng(7)
+    rows = np.concatenate([random_sh(rng, 150, 0.6), random_sh(rng, 150, 2.0)])
+    lattice = fibonacci_sphere(2000).astype(np.float32)
+    minima, normals = sh.min_irradiance(rows, order, "nonnegative")
+    assert minima.min() >= 0
+    assert sh.eval_irradiance_ex(rows, normals, order, "nonnegative").min() >= 0
+    applied = sh.apply_options(rows, order, "nonnegative")
+    assert (sh.nonnegative_window_strength(rows, order) > 0).sum() >= 150
+    for row in applied:
+        assert sh.eval_irradiance_ex(row, lattice).min() >= 0
 
 
 def test_bad_arguments():
