@@ -111,5 +111,6 @@ int command_info(const std::vector<std::string>& args);
 int command_query(const std::vector<std::string>& args);
 int command_bake(const std::vector<std::string>& args);
 int command_demo(const std::vector<std::string>& args);
+int command_place(const std::vector<std::string>& args);
 
 }  // namespace cli
