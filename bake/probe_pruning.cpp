@@ -64,13 +64,32 @@ public:
         return e;
     }
 
-    double relative_error(const std::vector<double>& values, const std::vector<double>& reference) const {
-        double difference = 0, magnitude = 0;
-        for (size_t i = 0; i < values.size(); ++i) {
-            difference += (values[i] - reference[i]) * (values[i] - reference[i]);
-            magnitude += reference[i] * reference[i];
+    // Each held-out point's weight in the error: one over its reference irradiance squared, so dim and
+    // bright places count alike (a floor of a thousandth of the mean keeps black points finite).
+    void set_reference(const std::vector<double>& reference) {
+        reference_ = reference;
+        const size_t count = reference.size() / 27;
+        std::vector<double> magnitude(count);
+        double mean = 0;
+        for (size_t i = 0; i < count; ++i) mean += (magnitude[i] = irradiance_rms(&reference[27 * i])) / double(count);
+        point_weights_.resize(count);
+        for (size_t i = 0; i < count; ++i) {
+            const double m = std::max(magnitude[i], 1e-3 * mean);
+            point_weights_[i] = m > 0 ? 1.0 / (m * m) : 1.0;
         }
-        return magnitude > 0 ? std::sqrt(difference / magnitude) : std::sqrt(difference);
+    }
+
+    // RMS over the held-out points of the relative irradiance change against the reference.
+    double relative_error(const std::vector<double>& values) const {
+        const size_t count = point_weights_.size();
+        double sum = 0;
+        for (size_t i = 0; i < count; ++i) {
+            double d[27];
+            for (int k = 0; k < 27; ++k) d[k] = values[27 * i + k] - reference_[27 * i + k];
+            const double r = irradiance_rms(d);
+            sum += r * r * point_weights_[i];
+        }
+        return count ? std::sqrt(sum / double(count)) : 0.0;
     }
 
     // The probes of s (as positions in s.probes) in order of their estimated removal cost.
@@ -101,7 +120,7 @@ public:
                                &first_outside);
         std::vector<double> weight_squares(s.probes.size(), 0.0);
         for (size_t i = 0; i < 4 * count; ++i)
-            weight_squares[s.store->probe_source(cell_probes[i])] += double(weights[i]) * weights[i];
+            weight_squares[s.store->probe_source(cell_probes[i])] += double(weights[i]) * weights[i] * point_weights_[i / 4];
 
         std::vector<std::tuple<double, double, uint32_t>> keyed(s.probes.size());
         for (uint32_t i = 0; i < s.probes.size(); ++i) {
@@ -145,7 +164,9 @@ private:
     const std::vector<float>* sh_;
     const std::vector<float>& points_;
     uint32_t threads_;
-    std::vector<double> irradiance_;  // 27 per probe
+    std::vector<double> irradiance_;     // 27 per probe
+    std::vector<double> reference_;      // 27 per held-out point: what every candidate interpolates
+    std::vector<double> point_weights_;  // per held-out point
 };
 
 }  // namespace
@@ -172,9 +193,9 @@ PruneResult prune_probes(const std::vector<float>& positions, const std::vector<
     const bool target = settings.target_count > 0, bound = settings.error_bound > 0;
     if (n == 0 || (!target && !bound) || (target && settings.target_count >= n)) return result;
 
-    const Pruner pruner(positions, sh, held_out.empty() ? positions : held_out, settings.threads);
+    Pruner pruner(positions, sh, held_out.empty() ? positions : held_out, settings.threads);
     SubsetStore current = pruner.build(result.kept);
-    const std::vector<double> reference = pruner.interpolate(current);
+    pruner.set_reference(pruner.interpolate(current));
     progress.report(0.0, "prune");
 
     while (current.probes.size() > 1 && (!target || current.probes.size() > settings.target_count)) {
@@ -198,7 +219,7 @@ PruneResult prune_probes(const std::vector<float>& positions, const std::vector<
             for (size_t i = 0; i < size; ++i)
                 if (!removed[i]) rest.push_back(current.probes[i]);
             SubsetStore trial = pruner.build(std::move(rest));
-            const double error = pruner.relative_error(pruner.interpolate(trial), reference);
+            const double error = pruner.relative_error(pruner.interpolate(trial));
             if (bound && error > settings.error_bound) {
                 if (chosen <= 1) {
                     result.kept = current.probes;

@@ -2,16 +2,18 @@
 // count or an error bound, and the error is reported against the number of probes.
 //
 // Error: the irradiance the probes interpolate at held-out points, compared with what the full set
-// interpolates there; relative RMS over the points, every normal direction and the three channels
-// (the irradiance SH's own L2 norm). It is measured exactly after each round, on a real store built
-// from the remaining probes.
+// interpolates there: at each point the RMS over every normal direction and the three channels (the
+// irradiance SH's own L2 norm) relative to the full set's own there, so dim and bright places count
+// alike; then the RMS over the points. It is measured exactly after each round, on a real store
+// built from the remaining probes.
 //
 // Cost of removing a probe, estimated locally: Delaunay removal changes the interpolant only in the
 // probe's star, where the neighbours' values then interpolate linearly; so the change at a held-out
 // point h is close to w_p(h) * (E_p - A(p)), with w_p(h) p's current weight at h and A the affine
-// least-squares fit of p's Delaunay neighbours' irradiance, evaluated at p. A round sorts the probes
-// by that cost, removes a batch of the cheapest of which no two are neighbours (so the estimates stay
-// independent; up to a tenth of the probes), rebuilds, and measures. A round that would cross the
+// least-squares fit of p's Delaunay neighbours' irradiance, evaluated at p; the cost sums its square
+// over the held-out points, each weighed as in the error. A round sorts the probes by that cost,
+// removes a batch of the cheapest of which no two are neighbours (so the estimates stay independent;
+// up to a tenth of the probes), rebuilds, and measures. A round that would cross the
 // error bound is retried with half the batch, down to one probe, and then pruning stops.
 #pragma once
 
