@@ -8,6 +8,7 @@ differs from this package's is refused. Arrays are numpy, float32 unless said.
 from . import sh
 from ._native import PACKAGE_VERSION, library_path
 from .errors import Error, Status
+from .placement import Placement, find_inside_probes, fix_inside_probes, place_probes
 from .scene import Scene, bake, bake_plan
 from .store import Store
 from .volume import shadow_caster_volume, volume_test_aabb, volume_test_sphere
@@ -22,5 +23,6 @@ def library_version():
     return (version >> 16) & 0xFFFF, (version >> 8) & 0xFF, version & 0xFF
 
 
-__all__ = ["Error", "Status", "Store", "Scene", "bake", "bake_plan", "shadow_caster_volume", "volume_test_aabb",
+__all__ = ["Error", "Status", "Store", "Scene", "bake", "bake_plan", "place_probes", "Placement", "find_inside_probes",
+           "fix_inside_probes", "shadow_caster_volume", "volume_test_aabb",
            "volume_test_sphere", "sh", "library_path", "library_version", "__version__"]

@@ -159,7 +159,8 @@ def bake(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress
 
 
 def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress=None, culling=True):
-    """The effects plan of a bake with the same arguments, as a dict (with its one-line summary in 'text')."""
+    """The effects plan of a bake with the same arguments, as a dict (with its one-line summary in 'text'; the
+    probes inside geometry counted in 'inside_probes' and listed in 'inside_indices')."""
     points, stride = _positions(scene, positions)
     options, _ = _options(rays, bounces, seed, threads, progress, culling)
     plan = _native.EffectsPlan()
@@ -171,4 +172,9 @@ def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, pro
     result["sky"] = bool(plan.sky)
     result["shadows"] = bool(plan.shadows)
     result["text"] = text.value.decode("utf-8", "replace")
+    # The probes inside geometry by index (their count is result["inside_probes"]).
+    result["inside_indices"] = []
+    if plan.inside_probes:
+        from .placement import find_inside_probes
+        result["inside_indices"] = [int(i) for i in find_inside_probes(scene, points)]
     return result
