@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <numeric>
 #include <tuple>
@@ -18,6 +19,9 @@
 namespace tetprobe {
 
 namespace {
+
+// Single-probe removals tried, cheapest first, before a round that would cross the bound stops pruning.
+constexpr size_t kSingleTries = 8;
 
 // A store of a subset of the probes, and its arrays (for the Delaunay neighbours).
 struct SubsetStore {
@@ -198,36 +202,45 @@ PruneResult prune_probes(const std::vector<float>& positions, const std::vector<
     pruner.set_reference(pruner.interpolate(current));
     progress.report(0.0, "prune");
 
+    // Near the bound batches shrink; a round starts at twice the last accepted batch, not a tenth again.
+    size_t batch_limit = SIZE_MAX;
     while (current.probes.size() > 1 && (!target || current.probes.size() > settings.target_count)) {
         const size_t size = current.probes.size();
         std::vector<std::vector<uint32_t>> neighbours;
         const std::vector<uint32_t> order = pruner.removal_order(current, &neighbours);
-        size_t batch = std::max<size_t>(1, size / 10);
+        size_t batch = std::min(batch_limit, std::max<size_t>(1, size / 10));
         if (target) batch = std::min(batch, size - settings.target_count);
+        // Single probes whose removal alone crossed the bound, skipped this round.
+        std::vector<uint8_t> rejected(size, 0);
+        size_t rejections = 0;
         bool accepted = false;
         while (!accepted) {
             // The cheapest probes of which no two are neighbours.
-            std::vector<uint8_t> removed(size, 0), blocked(size, 0);
-            size_t chosen = 0;
+            std::vector<uint8_t> removed(size, 0), blocked(rejected);
+            size_t chosen = 0, single = 0;
             for (uint32_t i : order) {
                 if (chosen == batch) break;
                 if (blocked[i]) continue;
-                removed[i] = 1, ++chosen;
+                removed[i] = 1, ++chosen, single = i;
                 for (uint32_t j : neighbours[i]) blocked[j] = 1;
             }
+            if (chosen == 0) break;
             std::vector<uint32_t> rest;
             for (size_t i = 0; i < size; ++i)
                 if (!removed[i]) rest.push_back(current.probes[i]);
             SubsetStore trial = pruner.build(std::move(rest));
             const double error = pruner.relative_error(pruner.interpolate(trial));
             if (bound && error > settings.error_bound) {
-                if (chosen <= 1) {
-                    result.kept = current.probes;
-                    return result;
+                if (chosen > 1) {
+                    batch = chosen / 2;
+                } else {
+                    // The estimate misjudged this one: try the next cheapest few before giving up.
+                    rejected[single] = 1;
+                    if (++rejections == kSingleTries) break;
                 }
-                batch = chosen / 2;
                 continue;
             }
+            if (bound) batch_limit = 2 * chosen;
             current = std::move(trial);
             result.curve.push_back({uint32_t(current.probes.size()), error});
             accepted = true;
@@ -235,6 +248,7 @@ PruneResult prune_probes(const std::vector<float>& positions, const std::vector<
                                  : error / settings.error_bound;
             progress.report(done, "prune");
         }
+        if (!accepted) break;
     }
     result.kept = current.probes;
     return result;

@@ -14,7 +14,8 @@
 // over the held-out points, each weighed as in the error. A round sorts the probes by that cost,
 // removes a batch of the cheapest of which no two are neighbours (so the estimates stay independent;
 // up to a tenth of the probes), rebuilds, and measures. A round that would cross the
-// error bound is retried with half the batch, down to one probe, and then pruning stops.
+// error bound is retried with half the batch, down to one probe; when the eight cheapest single
+// probes each cross it, pruning stops.
 #pragma once
 
 #include "bake/parallel_jobs.h"

@@ -102,6 +102,10 @@ struct BakeResult {
 BakeSettings bake_settings(const Arguments& a, uint32_t default_rays);
 BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings);
 
+// Replaces a scene's probes with automatically placed ones (tp_place_probes at `spacing`, pruned
+// to `error_bound`) and prints what placement did; the demo's scene uses it.
+void place_scene_probes(tp_scene* scene, float spacing, float error_bound);
+
 // Command-line parsing helpers.
 double parse_number(const std::string& text, const char* what);
 unsigned long parse_count(const std::string& text, const char* what);

@@ -10,6 +10,27 @@
 
 namespace cli {
 
+void place_scene_probes(tp_scene* scene, float spacing, float error_bound) {
+    const float* given = nullptr;
+    size_t hand_placed = 0;
+    check(tp_scene_probes(scene, &given, &hand_placed), "reading the scene's probes");
+    tp_placement_options options;
+    check(tp_placement_options_init(&options), "tp_placement_options_init");
+    options.spacing = spacing;
+    options.error_bound = error_bound;
+    size_t bound = 0, count = 0, points = 0;
+    check(tp_place_probes_bound(scene, &options, &bound), "sizing the placement");
+    std::vector<float> positions(3 * bound), curve(2 * bound + 2);
+    const auto start = std::chrono::steady_clock::now();
+    check(tp_place_probes(scene, &options, positions.data(), bound, &count, curve.data(), bound + 1, &points),
+          "placing probes");
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    check(tp_scene_set_probes(scene, positions.data(), count), "setting the placed probes");
+    std::printf("placement: %zu probes placed automatically (spacing %g: %.0f candidates, pruned to error %.3f at "
+                "held-out points, bound %g) in %.2f s, instead of the file's %zu hand-placed ones\n",
+                count, spacing, double(curve[0]), double(curve[2 * (points - 1) + 1]), error_bound, seconds, hand_placed);
+}
+
 int command_place(const std::vector<std::string>& args) {
     const Arguments a = parse_arguments(
         args, {"-o", "--mode", "--spacing", "--margin", "--target", "--error", "--rays", "--bounces", "--seed", "--threads",
