@@ -135,3 +135,31 @@ def test_cli_place_writes_probes_and_curve(tmp_path):
                           "--spacing", "0"], capture_output=True, text=True, timeout=120)
     assert bad.returncode == 1 and "spacing" in bad.stderr
     assert not (tmp_path / "bad.csv").exists()
+
+
+def test_cancelled_placement_writes_nothing():
+    """Through the raw C ABI: a cancel returns TP_ERROR_CANCELLED and leaves the caller's buffers as they were."""
+    import ctypes
+    from tetprobe import _native
+    scene = room_scene()
+    options = _native.PlacementOptions()
+    _native.check(_native.lib.tp_placement_options_init(ctypes.byref(options)))
+    options.spacing, options.target_count, options.error_bound = 0.75, 40, 0
+    options.progress = _native.ProgressFn(lambda user, fraction, stage: 1 if stage == b"prune" else 0)
+    bound = ctypes.c_size_t()
+    _native.check(_native.lib.tp_place_probes_bound(scene._live(), ctypes.byref(options), ctypes.byref(bound)))
+    assert bound.value == 256
+    positions = np.full((bound.value, 3), 7.0, np.float32)
+    curve = np.full((bound.value + 1, 2), 7.0, np.float32)
+    count, points = ctypes.c_size_t(5), ctypes.c_size_t(5)
+    status = _native.lib.tp_place_probes(scene._live(), ctypes.byref(options), positions, bound.value,
+                                         ctypes.byref(count), curve, bound.value + 1, ctypes.byref(points))
+    assert status == Status.CANCELLED
+    assert count.value == 0 and points.value == 0
+    assert (positions == 7).all() and (curve == 7).all()
+    # Too small a buffer: the counts are reported and nothing is written.
+    options.progress = _native.ProgressFn()
+    status = _native.lib.tp_place_probes(scene._live(), ctypes.byref(options), positions, 39, ctypes.byref(count),
+                                         curve, bound.value + 1, ctypes.byref(points))
+    assert status == Status.BUFFER_TOO_SMALL and count.value == 40
+    assert (positions == 7).all()
