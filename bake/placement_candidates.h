@@ -1,9 +1,10 @@
-// Candidate probe positions for automatic placement: a grid over the scene's bounds, kept where a
-// probe is useful and safe. Kept points are outside geometry (bake/inside_test.h), at least `margin`
-// from every surface, and in the walkable mode within a height band above an upward-facing surface
-// (up is +y: the first surface straight below faces up, within 45 degrees, and lies between
-// walk_min_height and walk_max_height below the point). The same rules pick held-out points on the
-// grid shifted by half a spacing (the cells' centres), where pruning measures its error.
+// Candidate probe positions for automatic placement, kept where a probe is useful and safe. The whole
+// mode takes a grid over the scene's bounds; the walkable mode takes columns of that grid, finds
+// every upward-facing surface along each (up is +y; a floor faces up within 45 degrees, a one-sided
+// surface seen from behind is none), and stands points above each floor across the height band
+// [walk_min_height, walk_max_height], a spacing apart. Kept points are outside geometry
+// (bake/inside_test.h) and at least `margin` from every surface. The same rules pick held-out points
+// on the grid shifted by half a spacing (the cells' centres), where pruning measures its error.
 #pragma once
 
 #include "bake/parallel_jobs.h"
@@ -19,7 +20,7 @@ namespace tetprobe {
 
 enum class PlacementMode : uint32_t { whole = 0, walkable = 1 };
 
-// Grid points (candidates and held-out points together) above this are refused: each is tested with
+// Points (candidates and held-out points together) above this are refused: each is tested with
 // dozens of rays and kept ones are baked.
 constexpr size_t kMaxPlacementGridPoints = 250000;
 
@@ -34,11 +35,11 @@ struct CandidateRules {
 struct Candidates {
     std::vector<float> positions;  // 3 per candidate, world, in grid order (x fastest, then y, z)
     std::vector<float> held_out;   // 3 per held-out point
-    size_t grid_points = 0;        // candidate grid points before the rules
+    size_t grid_points = 0;        // candidate points before the inside and margin tests
 };
 
-// The number of candidate grid points the rules give for the scene (an upper bound of the
-// candidates). Throws Error(Status::invalid_argument) for a spacing that is not positive, a negative
+// The number of candidate points before the inside and margin tests (an upper bound of the
+// candidates; the walkable mode casts a few rays per column to find the floors). Throws Error(Status::invalid_argument) for a spacing that is not positive, a negative
 // margin, a margin larger than the scene, a bad height band or too many grid points, and
 // Error(Status::scene) for a scene without meshes.
 size_t candidate_bound(const Scene& scene, const CandidateRules& rules);

@@ -32,7 +32,7 @@ struct Placement {
     size_t held_out = 0;
 };
 
-// The upper bound of the probes place_probes returns (the candidate grid's size); throws as
+// The upper bound of the probes place_probes returns (see candidate_bound); throws as
 // candidate_bound.
 size_t placement_bound(const Scene& scene, const PlacementSettings& settings);
 

@@ -34,11 +34,10 @@ class Pruner {
 public:
     Pruner(const std::vector<float>& positions, const std::vector<float>& sh, const std::vector<float>& points,
            uint32_t threads)
-        : positions_(positions), points_(points), threads_(threads) {
+        : positions_(positions), sh_(sh), points_(points), threads_(threads) {
         const size_t n = positions.size() / 3;
         irradiance_.resize(27 * n);
         for (size_t i = 0; i < n; ++i) irradiance_coefficients(&sh[27 * i], &irradiance_[27 * i]);
-        sh_ = &sh;
     }
 
     SubsetStore build(std::vector<uint32_t> probes) const {
@@ -47,7 +46,7 @@ public:
         std::vector<float> p(3 * s.probes.size()), c(27 * s.probes.size());
         for (size_t i = 0; i < s.probes.size(); ++i) {
             std::copy_n(&positions_[3 * size_t(s.probes[i])], 3, &p[3 * i]);
-            std::copy_n(&(*sh_)[27 * size_t(s.probes[i])], 27, &c[27 * i]);
+            std::copy_n(&sh_[27 * size_t(s.probes[i])], 27, &c[27 * i]);
         }
         s.data = build_store_data(p.data(), 12, c.data(), 108, s.probes.size(), BuildSettings{});
         const std::vector<uint8_t> blob = write_store_blob(s.data);
@@ -165,7 +164,7 @@ private:
     }
 
     const std::vector<float>& positions_;
-    const std::vector<float>* sh_;
+    const std::vector<float>& sh_;
     const std::vector<float>& points_;
     uint32_t threads_;
     std::vector<double> irradiance_;     // 27 per probe

@@ -397,7 +397,8 @@ TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t p
  * --------------------------------------------------------------------------------------------- */
 
 #define TP_PLACEMENT_WHOLE 0u    /* candidates fill the scene's bounds */
-#define TP_PLACEMENT_WALKABLE 1u /* candidates stand within a height band above upward-facing surfaces (+y up) */
+#define TP_PLACEMENT_WALKABLE 1u /* candidates stand across a height band above every upward-facing surface (+y up),
+                                    in columns of the grid */
 
 typedef struct tp_placement_options {
     uint32_t struct_size;
@@ -425,7 +426,8 @@ typedef struct tp_placement_options {
 TP_API tp_status tp_placement_options_init(tp_placement_options* options);
 
 /** Upper bound of the probes (and of the error curve's points) tp_place_probes returns for these
-    options: the size of the candidate grid, computed without casting a ray. Fails as tp_place_probes
+    options: the candidates before the inside and margin tests (the grid's size; in the walkable mode the
+    columns' floors times the band's layers, found with a few rays per column). Fails as tp_place_probes
     does on bad options (spacing, margin larger than the scene, too many grid points). */
 TP_API tp_status tp_place_probes_bound(const tp_scene* scene, const tp_placement_options* options, size_t* out_bound);
 

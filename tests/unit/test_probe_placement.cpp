@@ -129,29 +129,43 @@ TEST_CASE("placement candidates: outside geometry and clear of every surface by 
     }
 }
 
-TEST_CASE("placement candidates: walkable keeps a height band above upward-facing surfaces", "[placement]") {
-    const Scene scene = lit_room();
+TEST_CASE("placement candidates: walkable stands points across a band above every floor", "[placement]") {
+    // The room with a table and a short pillar: floors at 0, on the table (0.8) and on the pillar (2).
+    Scene scene;
+    add_box(scene, {0, 0, 0}, {6, 3, 6}, false);
+    add_box(scene, {2.5f, 0, 2.5f}, {3.5f, 2, 3.5f}, true);
+    add_box(scene, {4.5f, 0, 0.5f}, {5.5f, 0.8f, 1.5f}, true);
     CandidateRules rules;
     rules.mode = PlacementMode::walkable;
     rules.spacing = 0.75;
     rules.margin = 0.2;
     rules.walk_min_height = 0.0;
-    rules.walk_max_height = 1.2;
+    rules.walk_max_height = 1.5;  // two layers: 0.375 and 1.125 above each floor
     const Candidates c = find_candidates(scene, rules, 2, ProgressRange{});
-    // The walkable grid reaches walk_max_height above the scene's top: y extent 4.2, 5 layers.
-    const std::vector<float> grid = room_grid(4.2f);
     std::vector<float> expected;
-    for (size_t i = 0; i < grid.size() / 3; ++i) {
-        const float* p = &grid[3 * i];
-        const bool over_table = p[0] > 4.5f && p[0] < 5.5f && p[2] > 0.5f && p[2] < 1.5f;
-        const float floor = over_table ? 0.8f : 0.0f;
-        const bool under_ceiling = p[1] < 3.0f;
-        if (under_ceiling && !in_solid(p) && p[1] - floor <= 1.2f && distance_to_scene(scene, p) >= rules.margin)
-            expected.insert(expected.end(), p, p + 3);
-    }
+    size_t before_tests = 0;
+    for (int z = 0; z < 8; ++z)
+        for (int x = 0; x < 8; ++x) {
+            const float px = 0.375f + 0.75f * x, pz = 0.375f + 0.75f * z;
+            std::vector<float> floors;  // from the top down
+            if (px > 2.5f && px < 3.5f && pz > 2.5f && pz < 3.5f) floors.push_back(2.0f);
+            if (px > 4.5f && px < 5.5f && pz > 0.5f && pz < 1.5f) floors.push_back(0.8f);
+            floors.push_back(0.0f);
+            for (float floor : floors)
+                for (float h : {0.375f, 1.125f}) {
+                    const float p[3] = {px, floor + h, pz};
+                    ++before_tests;
+                    const bool solid = (px > 2.5f && px < 3.5f && pz > 2.5f && pz < 3.5f && p[1] < 2.0f) ||
+                                       (px > 4.5f && px < 5.5f && pz > 0.5f && pz < 1.5f && p[1] < 0.8f);
+                    if (!solid && p[1] < 3.0f && distance_to_scene(scene, p) >= rules.margin)
+                        expected.insert(expected.end(), p, p + 3);
+                }
+        }
+    CHECK(c.grid_points == before_tests);
+    CHECK(candidate_bound(scene, rules) == before_tests);
     REQUIRE(c.positions.size() == expected.size());
-    for (size_t i = 0; i < expected.size(); ++i) CHECK(c.positions[i] == Approx(expected[i]).margin(1e-6));
-    CHECK(expected.size() / 3 > 40);
+    for (size_t i = 0; i < expected.size(); ++i) CHECK(c.positions[i] == Approx(expected[i]).margin(1e-5));
+    CHECK(expected.size() / 3 > 100);
 }
 
 TEST_CASE("placement: the same bytes for a seed on one thread and two", "[placement]") {
