@@ -407,18 +407,19 @@ typedef struct tp_placement_options {
     float margin;                /* least distance of a probe from every surface (default 0.1) */
     float walk_min_height;       /* walkable: the band above the floor (default 0 to 2) */
     float walk_max_height;
-    /** Pruning stops at this many probes (0 = no target, the default). */
+    /** Pruning stops at this many probes (0 = no target, the default); set error_bound to 0 as well to
+        reach it whatever the error. */
     uint32_t target_count;
-    /** Pruning never lets the error exceed this (default 0.05; 0 = no bound). The error: relative RMS,
-        over held-out points between the grid's, every normal and the three channels, of the irradiance
-        the remaining probes interpolate against what all candidates interpolate. Without a target and
-        a bound nothing is pruned (the candidates are returned). */
+    /** Pruning never lets the error exceed this (default 0.05; 0 = no bound). The error: at each held-out
+        point (between the grid's) the RMS over every normal and the three channels of the change of the
+        interpolated irradiance, relative to what all candidates interpolate there; then the RMS over the
+        points. Without a target and a bound nothing is pruned (the candidates are returned). */
     float error_bound;
     uint32_t rays;               /* rays per candidate of the low-sample bake that pruning compares (default 128) */
     uint32_t bounces;            /* as tp_bake_options (default 2) */
     uint64_t seed;               /* the same seed gives the same bytes whatever the thread count */
     uint32_t threads;            /* 0 = all cores */
-    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "prune" */
+    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "prune", "done" */
     void* progress_user;
 } tp_placement_options;
 
