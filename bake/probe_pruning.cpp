@@ -196,7 +196,10 @@ PruneResult prune_probes(const std::vector<float>& positions, const std::vector<
     const bool target = settings.target_count > 0, bound = settings.error_bound > 0;
     if (n == 0 || (!target && !bound) || (target && settings.target_count >= n)) return result;
 
-    Pruner pruner(positions, sh, held_out.empty() ? positions : held_out, settings.threads);
+    // Removed probes are held out too: their own baked light is what the full set gives there.
+    std::vector<float> points = held_out;
+    points.insert(points.end(), positions.begin(), positions.end());
+    Pruner pruner(positions, sh, points, settings.threads);
     SubsetStore current = pruner.build(result.kept);
     pruner.set_reference(pruner.interpolate(current));
     progress.report(0.0, "prune");

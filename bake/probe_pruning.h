@@ -1,8 +1,8 @@
 // Error-driven pruning of a baked probe set: probes are removed, cheapest first, until a target
 // count or an error bound, and the error is reported against the number of probes.
 //
-// Error: the irradiance the probes interpolate at held-out points, compared with what the full set
-// interpolates there: at each point the RMS over every normal direction and the three channels (the
+// Error: the irradiance the probes interpolate at held-out points (the given ones and every probe's
+// own position, so a removed probe is held out too), compared with what the full set interpolates there: at each point the RMS over every normal direction and the three channels (the
 // irradiance SH's own L2 norm) relative to the full set's own there, so dim and bright places count
 // alike; then the RMS over the points. It is measured exactly after each round, on a real store
 // built from the remaining probes.
@@ -41,8 +41,7 @@ struct PruneResult {
     std::vector<ErrorCurvePoint> curve;  // one point per round, from the full set (error 0) down
 };
 
-// positions: 3 floats per probe (world); sh: 27 per probe; held_out: 3 per point (empty: the probes'
-// own positions are used). Nothing is pruned when there is neither a target nor a bound. The result
+// positions: 3 floats per probe (world); sh: 27 per probe; held_out: 3 per point (may be empty). Nothing is pruned when there is neither a target nor a bound. The result
 // depends only on the input, not on the thread count. Throws Error(Status::cancelled) from progress.
 PruneResult prune_probes(const std::vector<float>& positions, const std::vector<float>& sh,
                          const std::vector<float>& held_out, const PruneSettings& settings,
