@@ -2,9 +2,10 @@
 // count or an error bound, and the error is reported against the number of probes.
 //
 // Error: the irradiance the probes interpolate at held-out points (the given ones and every probe's
-// own position, so a removed probe is held out too), compared with what the full set interpolates there: at each point the RMS over every normal direction and the three channels (the
-// irradiance SH's own L2 norm) relative to the full set's own there, so dim and bright places count
-// alike; then the RMS over the points. It is measured exactly after each round, on a real store
+// own position, so a removed probe is held out too), compared with what the full set interpolates
+// there: at each point the RMS over every normal direction and the three channels (the irradiance
+// SH's own L2 norm) relative to the full set's own there, so dim and bright places count alike;
+// then the RMS over the points. It is measured exactly after each round, on a real store
 // built from the remaining probes.
 //
 // Cost of removing a probe, estimated locally: Delaunay removal changes the interpolant only in the

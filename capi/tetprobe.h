@@ -411,9 +411,10 @@ typedef struct tp_placement_options {
         reach it whatever the error. */
     uint32_t target_count;
     /** Pruning never lets the error exceed this (default 0.05; 0 = no bound). The error: at each held-out
-        point (between the grid's, and every candidate's own) the RMS over every normal and the three channels of the change of the
-        interpolated irradiance, relative to what all candidates interpolate there; then the RMS over the
-        points. Without a target and a bound nothing is pruned (the candidates are returned). */
+        point (between the grid's, and every candidate's own) the RMS over every normal and the three
+        channels of the change of the interpolated irradiance, relative to what all candidates
+        interpolate there; then the RMS over the points. Without a target and a bound nothing is pruned
+        (the candidates are returned). */
     float error_bound;
     uint32_t rays;               /* rays per candidate of the low-sample bake that pruning compares (default 128) */
     uint32_t bounces;            /* as tp_bake_options (default 2) */
