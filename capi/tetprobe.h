@@ -50,7 +50,7 @@ extern "C" {
 #endif
 
 #define TP_VERSION_MAJOR 0
-#define TP_VERSION_MINOR 5
+#define TP_VERSION_MINOR 6
 #define TP_VERSION_PATCH 0
 /** Version as one number, (major << 16) | (minor << 8) | patch; compare with tp_version(). */
 #define TP_VERSION ((TP_VERSION_MAJOR << 16) | (TP_VERSION_MINOR << 8) | TP_VERSION_PATCH)

@@ -531,5 +531,5 @@ static class Tests
 
 static class NativeProxyVersion
 {
-    public const uint Major = 0, Minor = 5;
+    public const uint Major = 0, Minor = 6;
 }
