@@ -165,6 +165,8 @@ int main(int argc, char** argv) {
     test_scene_and_bake();
     test_scene_files();
     test_occlusion_and_leak_control();
+    test_occlusion_bake_and_blend();
+    test_leak_control_queries();
 #endif
     printf("%d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;

@@ -93,5 +93,7 @@ void test_scene_and_bake(void);
 void test_scene_files(void);
 /* occlusion_leak.c */
 void test_occlusion_and_leak_control(void);
+void test_occlusion_bake_and_blend(void);
+void test_leak_control_queries(void);
 
 #endif

@@ -50,6 +50,12 @@ void test_runtime_library_refuses_bake_time(void) {
     EXPECT_UNSUPPORTED(tp_bake_plan, tp_bake_plan(NULL, positions, 0, 4, &options, &plan, text, sizeof text));
     CHECK(text[0] == '\0');
     EXPECT_UNSUPPORTED(tp_bake, tp_bake(NULL, positions, 0, 4, &options, out, 0));
+    {
+        unsigned char occlusion[16];
+        memset(occlusion, 0x5A, sizeof occlusion);
+        EXPECT_UNSUPPORTED(tp_bake_occlusion, tp_bake_occlusion(NULL, positions, 0, 4, &options, occlusion, 0, &id));
+        CHECK(occlusion[0] == 0x5A);
+    }
     /* The run-time functions still work after a refusal, and the message is cleared. */
     EXPECT_OK(tp_sh_add_ambient(sh, rgb));
     CHECK(tp_last_error()[0] == '\0');
