@@ -1,5 +1,6 @@
 #include "bake/effects_plan.h"
 
+#include "bake/inside_test.h"
 #include "core/error.h"
 #include "core/shadow_caster_volume.h"
 
@@ -123,6 +124,13 @@ EffectsPlan derive_effects_plan(const Scene& scene, const std::vector<float>& po
     return plan;
 }
 
+void add_inside_probes(EffectsPlan& plan, const Scene& scene, const std::vector<float>& positions, uint32_t threads) {
+    plan.inside_probes.clear();
+    plan.inside_decided = true;
+    if (scene.meshes().empty() || positions.empty()) return;
+    plan.inside_probes = find_inside_probes(scene, positions, threads, &plan.inside_decided);
+}
+
 std::string EffectsPlan::summary() const {
     std::string text = "direct: " + count_of(uint32_t(direct_lights.size()), "light", "lights");
     if (out_of_range_lights > 0) text += " (" + std::to_string(out_of_range_lights) + " out of range)";
@@ -132,6 +140,14 @@ std::string EffectsPlan::summary() const {
     text += "; bounces: " + std::to_string(bounces);
     text += "; shadow casters: " + std::to_string(shadow_casters) + "/" + std::to_string(shadow_caster_candidates) +
             " meshes";
+    if (!inside_decided) {
+        text += "; inside geometry: undecided (no mesh has an inside)";
+    } else if (!inside_probes.empty()) {
+        text += "; inside geometry: " + count_of(uint32_t(inside_probes.size()), "probe", "probes") + " (";
+        for (size_t i = 0; i < inside_probes.size() && i < 8; ++i)
+            text += (i ? ", " : "") + std::to_string(inside_probes[i]);
+        text += inside_probes.size() > 8 ? ", ...)" : ")";
+    }
     return text;
 }
 

@@ -28,13 +28,18 @@ struct EffectsPlan {
     std::vector<std::vector<uint32_t>> occluders;
     uint32_t shadow_casters = 0;            // sum of the occlusion sets' sizes
     uint32_t shadow_caster_candidates = 0;  // sum over direct shadowing lights of the meshes considered
+    // Probes inside geometry (bake/inside_test.h), filled by add_inside_probes; inside_decided is
+    // false when no mesh has an inside.
+    std::vector<uint32_t> inside_probes;
+    bool inside_decided = true;
 
     // True when the sphere of directions has to be sampled (sky, emission or bounces).
     bool sampled() const { return sky || !emissive_meshes.empty() || bounces > 0; }
 
     // One line: "direct: 2 lights (1 out of range); sky: off; emissive: 3 meshes; bounces: 2;
     // shadow casters: 41/120 meshes", with "; realtime: N lights (bounced only)" after the direct
-    // part when the scene has realtime lights.
+    // part when the scene has realtime lights, and "; inside geometry: 2 probes (4, 17)" (the first
+    // eight indices) when probes are inside, or "; inside geometry: undecided (no mesh has an inside)".
     std::string summary() const;
 };
 
@@ -42,6 +47,9 @@ struct EffectsPlan {
 // of bounces. culling = false puts every mesh into every shadowing light's occlusion set.
 EffectsPlan derive_effects_plan(const Scene& scene, const std::vector<float>& positions, uint32_t bounces,
                                 bool culling);
+
+// Fills the plan's inside_probes for the probes at `positions` (casts rays; see bake/inside_test.h).
+void add_inside_probes(EffectsPlan& plan, const Scene& scene, const std::vector<float>& positions, uint32_t threads);
 
 // The probes' bounding box, inflated a little so that a flat or single-probe set still bounds a
 // volume, as six inward planes (nx, ny, nz, d).

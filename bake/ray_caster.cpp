@@ -1,9 +1,11 @@
 #include "bake/ray_caster.h"
 
+#include "bake/closest_point.h"
 #include "core/error.h"
 
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -52,6 +54,40 @@ RTCRay make_ray(const float origin[3], const float direction[3], float t_near, f
     ray.id = 0;
     ray.flags = 0;
     return ray;
+}
+
+// What the point query's callback reads and narrows: the caster's meshes and the best point so far.
+struct NearestSearch {
+    const RayCaster* caster;
+    SurfacePoint best;
+    double best_distance = INFINITY;
+};
+
+bool closer_triangle(RTCPointQueryFunctionArguments* args) {
+    auto* search = static_cast<NearestSearch*>(args->userPtr);
+    const std::vector<float>& v = search->caster->local_vertices(args->geomID);
+    const uint32_t* tri = &search->caster->local_indices(args->geomID)[3 * size_t(args->primID)];
+    double corner[3][3];
+    for (int i = 0; i < 3; ++i)
+        for (int k = 0; k < 3; ++k) corner[i][k] = v[3 * size_t(tri[i]) + k];
+    const double p[3] = {args->query->x, args->query->y, args->query->z};
+    double q[3];
+    closest_point_on_triangle(p, corner[0], corner[1], corner[2], q);
+    const double distance = std::sqrt((q[0] - p[0]) * (q[0] - p[0]) + (q[1] - p[1]) * (q[1] - p[1]) +
+                                      (q[2] - p[2]) * (q[2] - p[2]));
+    if (!(distance <= double(args->query->radius)) || distance > search->best_distance) return false;
+    // Ties keep the earlier (mesh, triangle), so the answer does not depend on the traversal order.
+    if (distance == search->best_distance &&
+        (args->geomID > search->best.mesh ||
+         (args->geomID == search->best.mesh && args->primID > search->best.triangle)))
+        return false;
+    search->best_distance = distance;
+    search->best.mesh = args->geomID;
+    search->best.triangle = args->primID;
+    search->best.distance = float(distance);
+    for (int k = 0; k < 3; ++k) search->best.point[k] = float(q[k]);
+    args->query->radius = std::nextafter(float(distance), INFINITY);
+    return true;
 }
 
 }  // namespace
@@ -130,6 +166,20 @@ bool RayCaster::intersect(const float origin[3], const float direction[3], float
     hit->mesh = rayhit.hit.geomID;
     hit->triangle = rayhit.hit.primID;
     hit->distance = rayhit.ray.tfar;
+    return true;
+}
+
+bool RayCaster::nearest_surface(const float point[3], float radius, SurfacePoint* nearest) const {
+    NearestSearch search{this, SurfacePoint{}};
+    RTCPointQuery query;
+    query.x = point[0], query.y = point[1], query.z = point[2];
+    query.time = 0.0f;
+    query.radius = radius;
+    RTCPointQueryContext context;
+    rtcInitPointQueryContext(&context);
+    rtcPointQuery(static_cast<RTCScene>(all_), &query, &context, closer_triangle, &search);
+    if (std::isinf(search.best_distance)) return false;
+    *nearest = search.best;
     return true;
 }
 

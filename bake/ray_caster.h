@@ -15,6 +15,14 @@ namespace tetprobe {
 // Largest coordinate (and reach) of a ray Embree accepts (its FLT_LARGE is 1.844e18).
 constexpr double kLargestRayCoordinate = 1e18;
 
+// The closest point of the scene's surfaces to a query point.
+struct SurfacePoint {
+    uint32_t mesh = 0;
+    uint32_t triangle = 0;
+    float point[3] = {0, 0, 0};  // local
+    float distance = 0;
+};
+
 struct RayHit {
     uint32_t mesh = 0;
     uint32_t triangle = 0;  // index among the mesh's kept triangles
@@ -40,8 +48,14 @@ public:
     bool occluded(const float origin[3], const float direction[3], float t_near, float t_far,
                   int occlusion_set) const;
 
+    // The closest surface point to `point` (local) within `radius`, found with Embree's point query
+    // and an exact-as-float closest point on each candidate triangle; false if no surface is that near.
+    bool nearest_surface(const float point[3], float radius, SurfacePoint* nearest) const;
+
     // The local vertices of a mesh, 3 floats per vertex (followed by one float of padding).
     const std::vector<float>& local_vertices(uint32_t mesh) const { return meshes_[mesh].vertices; }
+    // A mesh's kept triangles, 3 vertex indices each.
+    const std::vector<uint32_t>& local_indices(uint32_t mesh) const { return meshes_[mesh].indices; }
 
 private:
     struct MeshBuffers {

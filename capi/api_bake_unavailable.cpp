@@ -108,4 +108,36 @@ TP_API tp_status tp_bake_occlusion(const tp_scene*, const float*, size_t, size_t
     TP_API_END
 }
 
+TP_API tp_status tp_place_probes_bound(const tp_scene*, const tp_placement_options*, size_t* out_bound) {
+    TP_API_BEGIN
+    if (out_bound) *out_bound = 0;
+    return unavailable("tp_place_probes_bound");
+    TP_API_END
+}
+
+TP_API tp_status tp_place_probes(const tp_scene*, const tp_placement_options*, float*, size_t, size_t* out_count, float*,
+                                 size_t, size_t* out_curve_points) {
+    TP_API_BEGIN
+    if (out_count) *out_count = 0;
+    if (out_curve_points) *out_curve_points = 0;
+    return unavailable("tp_place_probes");
+    TP_API_END
+}
+
+TP_API tp_status tp_find_inside_probes(const tp_scene*, const float*, size_t, size_t, uint32_t*, size_t,
+                                       size_t* out_count) {
+    TP_API_BEGIN
+    if (out_count) *out_count = 0;
+    return unavailable("tp_find_inside_probes");
+    TP_API_END
+}
+
+TP_API tp_status tp_fix_inside_probes(const tp_scene*, const float*, size_t, size_t, uint32_t, float, float*, size_t,
+                                      size_t* out_count) {
+    TP_API_BEGIN
+    if (out_count) *out_count = 0;
+    return unavailable("tp_fix_inside_probes");
+    TP_API_END
+}
+
 }  // extern "C"

@@ -1,5 +1,6 @@
 // Scenes, the effects plan and the lighting bake (full library only).
 #include "boundary.h"
+#include "scene_handle.h"
 #include "strides.h"
 
 #include "scene_handle.h"
@@ -166,8 +167,9 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
     if (scene->scene.empty()) return fail(TP_ERROR_SCENE, "the scene is empty (no mesh, light or sky)");
 
-    const tetprobe::EffectsPlan derived =
+    tetprobe::EffectsPlan derived =
         tetprobe::derive_effects_plan(scene->scene, probes, settings.bounces, settings.culling);
+    tetprobe::add_inside_probes(derived, scene->scene, probes, settings.threads);
     tp_effects_plan out{};
     out.struct_size = sizeof(tp_effects_plan);
     out.lights = derived.lights;
@@ -181,6 +183,7 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     out.meshes = derived.meshes;
     out.shadow_casters = derived.shadow_casters;
     out.shadow_caster_candidates = derived.shadow_caster_candidates;
+    out.inside_probes = uint32_t(derived.inside_probes.size());
     *plan = out;
 
     if (text) {

@@ -26,6 +26,20 @@ inline tp_bake_options default_bake_options() {
     return options;
 }
 
+inline tp_placement_options default_placement_options() {
+    tp_placement_options options{};
+    options.struct_size = sizeof(tp_placement_options);
+    options.mode = TP_PLACEMENT_WHOLE;
+    options.spacing = kDefaultPlacementSpacing;
+    options.margin = kDefaultPlacementMargin;
+    options.walk_min_height = kDefaultWalkMinHeight;
+    options.walk_max_height = kDefaultWalkMaxHeight;
+    options.error_bound = kDefaultPlacementErrorBound;
+    options.rays = kDefaultPlacementRays;
+    options.bounces = kDefaultBakeBounces;
+    return options;
+}
+
 // Grey, one-sided, not emissive.
 inline tp_material default_material() {
     tp_material material{};

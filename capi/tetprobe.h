@@ -469,10 +469,14 @@ typedef struct tp_effects_plan {
     uint32_t meshes;
     uint32_t shadow_casters;     /* sum over shadowing lights of meshes kept in its occlusion set */
     uint32_t shadow_caster_candidates; /* sum over shadowing lights of meshes considered */
+    /** Probes inside geometry (see tp_find_inside_probes, which lists them; tp_fix_inside_probes drops
+        or moves them); 0 also when no mesh has an inside (the summary then says so). */
+    uint32_t inside_probes;
 } tp_effects_plan;
 
 /** Derives the effects plan; text (may be NULL) receives a one-line summary such as
-    "direct: 2 lights (1 out of range); sky: off; emissive: 3 meshes; bounces: 2; shadow casters: 41/120 meshes". */
+    "direct: 2 lights (1 out of range); sky: off; emissive: 3 meshes; bounces: 2; shadow casters: 41/120 meshes",
+    followed by "; inside geometry: 2 probes (4, 17)" when some probes are inside geometry. */
 TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, size_t position_stride,
                               size_t count, const tp_bake_options* options, tp_effects_plan* plan,
                               char* text, size_t text_capacity);
@@ -491,6 +495,84 @@ TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t p
 TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions, size_t position_stride,
                                    size_t count, const tp_bake_options* options, uint8_t* out_occlusion,
                                    size_t occlusion_stride, uint32_t* out_mixed_lights);
+
+/* ------------------------------------------------------------------------------------------------
+ * Probe placement (bake-time library only): probes proposed from a scene, and probes of a user's set
+ * found inside geometry.
+ *
+ * Inside geometry: the back of a one-sided triangle is solid (a wall seen from behind), and so is the
+ * enclosed volume of a closed two-sided mesh (every edge, by exact vertex positions, shared by two
+ * consistently wound triangles: a crate, a pillar); an open two-sided mesh (a sheet) has no inside. A
+ * point is inside when more than half of 64 fixed rays from it first hit a triangle from its solid
+ * side. A scene where no triangle has a solid side gives TP_ERROR_SCENE (nothing can be decided).
+ * --------------------------------------------------------------------------------------------- */
+
+#define TP_PLACEMENT_WHOLE 0u    /* candidates fill the scene's bounds */
+#define TP_PLACEMENT_WALKABLE 1u /* candidates stand across a height band above every upward-facing surface (+y up),
+                                    in columns of the grid */
+
+typedef struct tp_placement_options {
+    uint32_t struct_size;
+    uint32_t mode;               /* TP_PLACEMENT_* (default WHOLE) */
+    float spacing;               /* candidate grid spacing, world units (default 1); must be positive */
+    float margin;                /* least distance of a probe from every surface (default 0.1) */
+    float walk_min_height;       /* walkable: the band above the floor (default 0 to 2) */
+    float walk_max_height;
+    /** Pruning stops at this many probes (0 = no target, the default); set error_bound to 0 as well to
+        reach it whatever the error. */
+    uint32_t target_count;
+    /** Pruning never lets the error exceed this (default 0.05; 0 = no bound). The error: at each held-out
+        point (between the grid's, and every candidate's own) the RMS over every normal and the three
+        channels of the change of the interpolated irradiance, relative to what all candidates
+        interpolate there; then the RMS over the points. Without a target and a bound nothing is pruned
+        (the candidates are returned). */
+    float error_bound;
+    uint32_t rays;               /* rays per candidate of the low-sample bake that pruning compares (default 128) */
+    uint32_t bounces;            /* as tp_bake_options (default 2) */
+    uint64_t seed;               /* the same seed gives the same bytes whatever the thread count */
+    uint32_t threads;            /* 0 = all cores */
+    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "prune", "done" */
+    void* progress_user;
+} tp_placement_options;
+
+/** Fills defaults and struct_size. */
+TP_API tp_status tp_placement_options_init(tp_placement_options* options);
+
+/** Upper bound of the probes (and of the error curve's points) tp_place_probes returns for these
+    options: the candidates before the inside and margin tests (the grid's size; in the walkable mode the
+    columns' floors times the band's layers, found with a few rays per column). Fails as tp_place_probes
+    does on bad options (spacing, margin larger than the scene, too many grid points). */
+TP_API tp_status tp_place_probes_bound(const tp_scene* scene, const tp_placement_options* options, size_t* out_bound);
+
+/** Places probes: candidates on a grid (options->mode), none inside geometry or closer than the margin
+    to a surface, baked with options->rays, then pruned greedily (the probe whose removal changes the
+    interpolated irradiance least, estimated from its Delaunay neighbours, in batches of non-adjacent
+    probes, measured on a rebuilt store after each batch) down to target_count or up to error_bound.
+    out_positions receives 3 floats per probe (room for capacity probes); out_error_curve (may be NULL)
+    2 floats per point, (probe count, error), from all candidates (error 0) down, room for
+    curve_capacity points. *out_count and *out_curve_points (may be NULL) receive the counts, also with
+    TP_ERROR_BUFFER_TOO_SMALL, when nothing is written; size both with tp_place_probes_bound. Errors: a
+    target above the candidates (TP_ERROR_INVALID_ARGUMENT), no candidate left (TP_ERROR_DEGENERATE), no
+    mesh or nothing with an inside (TP_ERROR_SCENE); cancelling writes nothing. */
+TP_API tp_status tp_place_probes(const tp_scene* scene, const tp_placement_options* options, float* out_positions,
+                                 size_t capacity, size_t* out_count, float* out_error_curve, size_t curve_capacity,
+                                 size_t* out_curve_points);
+
+/** Indices (ascending) of the probes inside geometry. out_indices has room for capacity indices (count
+    always suffices); *out_count receives how many there are, also with TP_ERROR_BUFFER_TOO_SMALL. */
+TP_API tp_status tp_find_inside_probes(const tp_scene* scene, const float* positions, size_t position_stride,
+                                       size_t count, uint32_t* out_indices, size_t capacity, size_t* out_count);
+
+#define TP_INSIDE_DROP 0u /* leave probes inside geometry out (the others keep their order) */
+#define TP_INSIDE_PUSH 1u /* move each to the nearest free point found at least margin from every surface */
+
+/** Fixes the probes inside geometry: out_positions (3 floats per probe, packed, room for capacity
+    probes; count always suffices; may be positions itself when packed) receives the kept probes for
+    TP_INSIDE_DROP, or every probe with the inside ones moved for TP_INSIDE_PUSH. A probe that cannot
+    be pushed out fails the call with TP_ERROR_SCENE naming it (nothing written). */
+TP_API tp_status tp_fix_inside_probes(const tp_scene* scene, const float* positions, size_t position_stride,
+                                      size_t count, uint32_t mode, float margin, float* out_positions,
+                                      size_t capacity, size_t* out_count);
 
 #ifdef __cplusplus
 }

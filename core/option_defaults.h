@@ -11,5 +11,11 @@ constexpr double kDefaultFlatTolerance = 1e-4;   // fraction of the probe set's 
 constexpr uint32_t kDefaultBakeRays = 256;
 constexpr uint32_t kDefaultBakeBounces = 2;
 constexpr float kDefaultAlbedo = 0.8f;
+// Automatic probe placement (tp_placement_options).
+constexpr float kDefaultPlacementSpacing = 1.0f;  // world units
+constexpr float kDefaultPlacementMargin = 0.1f;   // world units
+constexpr float kDefaultWalkMinHeight = 0.0f, kDefaultWalkMaxHeight = 2.0f;
+constexpr float kDefaultPlacementErrorBound = 0.05f;
+constexpr uint32_t kDefaultPlacementRays = 128;
 
 }  // namespace tetprobe

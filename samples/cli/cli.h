@@ -119,6 +119,10 @@ struct BakeResult {
 BakeSettings bake_settings(const Arguments& a, uint32_t default_rays);
 BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings);
 
+// Replaces a scene's probes with automatically placed ones (tp_place_probes at `spacing`, pruned
+// to `error_bound`) and prints what placement did; the demo's scene uses it.
+void place_scene_probes(tp_scene* scene, float spacing, float error_bound);
+
 // Command-line parsing helpers.
 double parse_number(const std::string& text, const char* what);
 unsigned long parse_count(const std::string& text, const char* what);
@@ -129,5 +133,6 @@ int command_query(const std::vector<std::string>& args);
 int command_bake(const std::vector<std::string>& args);
 int command_plan(const std::vector<std::string>& args);
 int command_demo(const std::vector<std::string>& args);
+int command_place(const std::vector<std::string>& args);
 
 }  // namespace cli

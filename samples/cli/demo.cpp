@@ -1,6 +1,7 @@
 // `tetprobe demo`: (a) a built-in probe cloud over an analytic lighting field — build, follow a
 // moving object with a hint, measure the error, picture a slice; (b) when the sample scene
-// two_rooms.json is found, bake it, build its store and picture a slice of the baked light.
+// two_rooms.json is found, place its probes automatically, bake them, build the store and picture a
+// slice of the baked light.
 #include "cli.h"
 
 #include <algorithm>
@@ -247,6 +248,7 @@ void demo_baked_scene(const fs::path& scene_path, const Arguments& a, const fs::
     tp_scene* raw = nullptr;
     check(tp_scene_load_file(scene_path.string().c_str(), &raw), "loading the scene");
     ScenePtr scene(raw);
+    place_scene_probes(scene.get(), 0.5f, 0.15f);
     const BakeSettings settings = bake_settings(a, 128);
     const BakeResult baked = bake_scene(scene.get(), settings);
     const size_t count = baked.positions.size() / 3;

@@ -16,6 +16,9 @@ const char* const kUsage =
     "  tetprobe query STORE x y z [--weights] [--json]\n"
     "  tetprobe bake SCENE.json -o STORE [--rays N] [--bounces N] [--seed N] [--threads N]\n"
     "  tetprobe plan SCENE.json [--rays N] [--bounces N] [--seed N] [--threads N] [--json]\n"
+    "  tetprobe place SCENE.json -o PROBES.csv [--mode whole|walkable] [--spacing S] [--margin M]\n"
+    "                 [--target N] [--error E] [--rays N] [--seed N] [--threads N] [--curve CURVE.json]\n"
+    "                 [--min-height H] [--max-height H]   probe positions proposed for a scene\n"
     "  tetprobe demo [--out DIR] [--scene FILE] [--rays N]\n"
     "  tetprobe version\n";
 
@@ -35,6 +38,7 @@ int main(int argc, char** argv) {
         if (command == "bake") return cli::command_bake(args);
         if (command == "plan") return cli::command_plan(args);
         if (command == "demo") return cli::command_demo(args);
+        if (command == "place") return cli::command_place(args);
         if (command == "version") {
             const uint32_t v = tp_version();
             std::printf("tetprobe %u.%u.%u\n", v >> 16, (v >> 8) & 0xFFu, v & 0xFFu);

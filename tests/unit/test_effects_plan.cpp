@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "bake/effects_plan.h"
+#include "bake/inside_test.h"
 #include "bake/scene.h"
 #include "bake/scene_file.h"
 
@@ -154,4 +155,26 @@ TEST_CASE("effects plan: the sample scenes", "[plan]") {
     Scene box = load_scene_file(root + "cornell_box.json");
     plan = derive_effects_plan(box, box.probes(), 2, true);
     CHECK(plan.summary() == "direct: 0 lights; sky: off; emissive: 1 mesh; bounces: 2; shadow casters: 0/0 meshes");
+}
+
+TEST_CASE("effects plan: probes inside geometry are counted and named, or the test says it cannot decide", "[plan]") {
+    Scene scene;
+    add_cube(scene, 0, 0, 0, grey());   // one-sided, facing out: a solid
+    add_cube(scene, 3, 0, 0, grey());
+    const std::vector<float> probes = {0.5f, 0.5f, 0.5f, 2, 0.5f, 0.5f, 3.5f, 0.2f, 0.9f, -1, -1, -1};
+    EffectsPlan plan = derive_effects_plan(scene, probes, 2, true);
+    add_inside_probes(plan, scene, probes, 1);
+    CHECK(plan.inside_probes == std::vector<uint32_t>{0, 2});
+    CHECK(plan.summary().find("; inside geometry: 2 probes (0, 2)") != std::string::npos);
+
+    Scene sheet;  // a two-sided open quad has no inside
+    const float v[12] = {0, 0, 0, 0, 0, 1, 1, 0, 1, 1, 0, 0};
+    const uint32_t t[6] = {0, 1, 2, 0, 2, 3};
+    Material two_sided = grey();
+    two_sided.two_sided = true;
+    sheet.add_mesh(v, 4, t, 2, {two_sided}, nullptr);
+    EffectsPlan open = derive_effects_plan(sheet, probes, 2, true);
+    add_inside_probes(open, sheet, probes, 1);
+    CHECK(open.inside_probes.empty());
+    CHECK(open.summary().find("inside geometry: undecided (no mesh has an inside)") != std::string::npos);
 }

@@ -29,11 +29,13 @@ from . import sh
 from ._native import PACKAGE_VERSION
 from .errors import Error, Status
 from .library import library_path, library_version, status_name
+from .placement import Placement, find_inside_probes, fix_inside_probes, place_probes
 from .scene import Scene, bake, bake_occlusion, bake_plan
 from .store import Store
 from .volume import shadow_caster_volume, volume_test_aabb, volume_test_sphere
 
 __version__ = "%d.%d.%d" % PACKAGE_VERSION
 
-__all__ = ["Error", "Status", "Store", "Scene", "bake", "bake_occlusion", "bake_plan", "shadow_caster_volume", "volume_test_aabb",
+__all__ = ["Error", "Status", "Store", "Scene", "bake", "bake_occlusion", "bake_plan", "place_probes", "Placement",
+           "find_inside_probes", "fix_inside_probes", "shadow_caster_volume", "volume_test_aabb",
            "volume_test_sphere", "sh", "library_path", "library_version", "status_name", "__version__"]

@@ -37,6 +37,10 @@ SH_ORDER_ZH3 = 2
 SH_WINDOW_NONE = 0
 SH_WINDOW_SLOAN = 1
 SH_WINDOW_NONNEGATIVE = 2
+PLACEMENT_WHOLE = 0
+PLACEMENT_WALKABLE = 1
+INSIDE_DROP = 0
+INSIDE_PUSH = 1
 
 ProgressFn = CFUNCTYPE(c_int, c_void_p, c_float, c_char_p)
 
@@ -91,7 +95,14 @@ class EffectsPlan(Structure):
     _fields_ = [("struct_size", c_uint32), ("lights", c_uint32), ("direct_lights", c_uint32),
                 ("realtime_lights", c_uint32), ("out_of_range_lights", c_uint32), ("sky", c_int32),
                 ("emissive_meshes", c_uint32), ("bounces", c_uint32), ("shadows", c_int32), ("meshes", c_uint32),
-                ("shadow_casters", c_uint32), ("shadow_caster_candidates", c_uint32)]
+                ("shadow_casters", c_uint32), ("shadow_caster_candidates", c_uint32), ("inside_probes", c_uint32)]
+
+
+class PlacementOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("mode", c_uint32), ("spacing", c_float), ("margin", c_float),
+                ("walk_min_height", c_float), ("walk_max_height", c_float), ("target_count", c_uint32),
+                ("error_bound", c_float), ("rays", c_uint32), ("bounces", c_uint32), ("seed", c_uint64),
+                ("threads", c_uint32), ("progress", ProgressFn), ("progress_user", c_void_p)]
 
 
 _status = c_int
@@ -170,6 +181,13 @@ PROTOTYPES = (
     ("tp_bake", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), _buffer, c_size_t)),
     ("tp_bake_occlusion", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), _buffer, c_size_t,
                                     POINTER(c_uint32))),
+    ("tp_placement_options_init", _status, (POINTER(PlacementOptions),)),
+    ("tp_place_probes_bound", _status, (_handle, POINTER(PlacementOptions), POINTER(c_size_t))),
+    ("tp_place_probes", _status, (_handle, POINTER(PlacementOptions), _buffer, c_size_t, POINTER(c_size_t), _buffer,
+                                  c_size_t, POINTER(c_size_t))),
+    ("tp_find_inside_probes", _status, (_handle, _buffer, c_size_t, c_size_t, _buffer, c_size_t, POINTER(c_size_t))),
+    ("tp_fix_inside_probes", _status, (_handle, _buffer, c_size_t, c_size_t, c_uint32, c_float, _buffer, c_size_t,
+                                       POINTER(c_size_t))),
 )
 
 _LIBRARY_NAME = {"darwin": "libtetprobe.dylib", "win32": "tetprobe.dll"}.get(sys.platform, "libtetprobe.so")

@@ -184,7 +184,8 @@ def bake(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress
 def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, progress=None, culling=True):
     """What bake(scene, positions, ...) with the same arguments will simulate, as a dict: lights,
     direct_lights, realtime_lights, out_of_range_lights, sky (bool), emissive_meshes, bounces, shadows
-    (bool), meshes, shadow_casters, shadow_caster_candidates, and text (the one-line summary).
+    (bool), meshes, shadow_casters, shadow_caster_candidates, inside_probes (probes inside geometry),
+    inside_indices (their indices) and text (the one-line summary).
 
     scene, positions[N, 3] (float32 world units; None = the scene's probes), rays, bounces, seed, threads, progress and
     culling as in bake; progress is not called (planning is quick)."""
@@ -199,6 +200,11 @@ def bake_plan(scene, positions=None, rays=256, bounces=2, seed=0, threads=0, pro
     result["sky"] = bool(plan.sky)
     result["shadows"] = bool(plan.shadows)
     result["text"] = text.value.decode("utf-8", "replace")
+    # The probes inside geometry by index (their count is result["inside_probes"]).
+    result["inside_indices"] = []
+    if plan.inside_probes:
+        from .placement import find_inside_probes
+        result["inside_indices"] = [int(i) for i in find_inside_probes(scene, points)]
     return result
 
 

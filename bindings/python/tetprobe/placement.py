@@ -1,0 +1,82 @@
+"""Automatic probe placement and probes inside geometry, through the C ABI."""
+
+import collections
+import ctypes
+import math
+
+import numpy as np
+
+from . import _native
+from ._arrays import Progress, rows
+from ._native import check, lib
+from .errors import Error, Status
+
+#: place_probes' result: positions[N, 3] float32 and error_curve[K, 2] float32 of (probe count, error),
+#: from every candidate (error 0) down to the result.
+Placement = collections.namedtuple("Placement", ["positions", "error_curve"])
+
+_MODES = {"whole": _native.PLACEMENT_WHOLE, "walkable": _native.PLACEMENT_WALKABLE}
+_FIXES = {"drop": _native.INSIDE_DROP, "push": _native.INSIDE_PUSH}
+
+
+def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0, 2.0), target=0, error_bound=None,
+                 rays=128, bounces=2, seed=0, threads=0, progress=None):
+    """Proposes probe positions for a scene -> Placement(positions[N, 3], error_curve[K, 2]).
+
+    Candidates on a grid of `spacing` over the scene ("whole") or within walk_height above upward-facing
+    surfaces ("walkable"), none inside geometry or within `margin` of a surface, baked with `rays`, then
+    pruned to `target` probes or until the error would exceed error_bound (default 0.05 without a target,
+    none with one; 0 = none). The same seed gives the same result whatever the thread count;
+    progress(fraction, stage) may return True to cancel."""
+    options = _native.PlacementOptions()
+    check(lib.tp_placement_options_init(ctypes.byref(options)))
+    if mode not in _MODES:
+        raise Error(Status.INVALID_ARGUMENT, "mode must be 'whole' or 'walkable' (got %r)" % (mode,))
+    for name, value in (("target", target), ("rays", rays), ("bounces", bounces), ("seed", seed), ("threads", threads)):
+        if value < 0:
+            raise Error(Status.INVALID_ARGUMENT, "%s must be >= 0 (got %d)" % (name, value))
+    options.mode = _MODES[mode]
+    options.spacing, options.margin = spacing, margin
+    options.walk_min_height, options.walk_max_height = walk_height
+    options.target_count = target
+    if error_bound is None:
+        error_bound = 0.0 if target else options.error_bound
+    options.error_bound = error_bound
+    options.rays, options.bounces, options.seed, options.threads = rays, bounces, seed, threads
+    callback = Progress(progress)
+    options.progress = callback.function
+    bound = ctypes.c_size_t()
+    check(lib.tp_place_probes_bound(scene._live(), ctypes.byref(options), ctypes.byref(bound)))
+    positions = np.empty((bound.value, 3), dtype=np.float32)
+    curve = np.empty((bound.value + 1, 2), dtype=np.float32)
+    count, points = ctypes.c_size_t(), ctypes.c_size_t()
+    status = lib.tp_place_probes(scene._live(), ctypes.byref(options), positions, bound.value, ctypes.byref(count),
+                                 curve, bound.value + 1, ctypes.byref(points))
+    callback.reraise()
+    check(status)
+    return Placement(positions[:count.value].copy(), curve[:points.value].copy())
+
+
+def find_inside_probes(scene, positions):
+    """Indices (ascending, int64) of the probes at positions[N, 3] that are inside geometry."""
+    points, stride, _ = rows(positions, 3, "positions")
+    out = np.empty(points.shape[0], dtype=np.uint32)
+    count = ctypes.c_size_t()
+    check(lib.tp_find_inside_probes(scene._live(), points, stride, points.shape[0], out, out.shape[0],
+                                    ctypes.byref(count)))
+    return out[:count.value].astype(np.int64)
+
+
+def fix_inside_probes(scene, positions, mode="drop", margin=0.1):
+    """The probes at positions[N, 3] with those inside geometry dropped ("drop") or pushed out to at least
+    margin from every surface ("push", every probe kept in order) -> positions[M, 3]."""
+    if mode not in _FIXES:
+        raise Error(Status.INVALID_ARGUMENT, "mode must be 'drop' or 'push' (got %r)" % (mode,))
+    if not math.isfinite(margin) or margin < 0:
+        raise Error(Status.INVALID_ARGUMENT, "margin must be zero or positive (got %r)" % (margin,))
+    points, stride, _ = rows(positions, 3, "positions")
+    out = np.empty((points.shape[0], 3), dtype=np.float32)
+    count = ctypes.c_size_t()
+    check(lib.tp_fix_inside_probes(scene._live(), points, stride, points.shape[0], _FIXES[mode], margin, out,
+                                   out.shape[0], ctypes.byref(count)))
+    return out[:count.value].copy()
