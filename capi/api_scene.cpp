@@ -3,15 +3,15 @@
 #include "scene_handle.h"
 #include "strides.h"
 
-#include "scene_handle.h"
-
 #include "bake/effects_plan.h"
 #include "bake/lighting_bake.h"
 #include "bake/occlusion_bake.h"
 #include "bake/scene.h"
 #include "bake/scene_file.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <string>
 
@@ -158,7 +158,10 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(plan);
-    if (plan->struct_size < sizeof(tp_effects_plan))
+    // The plan grows at its end (inside_probes came later): an older caller's struct gets only its fields.
+    constexpr size_t kFirstPlanSize = offsetof(tp_effects_plan, inside_probes);
+    const size_t plan_size = plan->struct_size;
+    if (plan_size < kFirstPlanSize)
         return fail(TP_ERROR_INVALID_ARGUMENT, "plan->struct_size is not set to sizeof(tp_effects_plan)");
     if (text && text_capacity > 0) text[0] = '\0';
     tetprobe::BakeSettings settings;
@@ -184,7 +187,8 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     out.shadow_casters = derived.shadow_casters;
     out.shadow_caster_candidates = derived.shadow_caster_candidates;
     out.inside_probes = uint32_t(derived.inside_probes.size());
-    *plan = out;
+    out.struct_size = uint32_t(std::min(plan_size, sizeof(tp_effects_plan)));
+    std::memcpy(plan, &out, out.struct_size);
 
     if (text) {
         const std::string summary = derived.summary();

@@ -52,6 +52,8 @@ namespace TetProbe
         public int Lights, DirectLights, RealtimeLights, OutOfRangeLights, EmissiveMeshes, Bounces, Meshes;
         /// <summary>Sum over shadowing lights of the meshes kept in its occlusion set, and of those considered.</summary>
         public int ShadowCasters, ShadowCasterCandidates;
+        /// <summary>Probes of the given positions inside geometry (the summary lists their indices).</summary>
+        public int InsideProbes;
         /// <summary>True if the scene has a non-black sky.</summary>
         public bool Sky;
         /// <summary>True if any simulated light casts shadows.</summary>
@@ -70,6 +72,7 @@ namespace TetProbe
             Meshes = (int)n.meshes;
             ShadowCasters = (int)n.shadow_casters;
             ShadowCasterCandidates = (int)n.shadow_caster_candidates;
+            InsideProbes = (int)n.inside_probes;
             Sky = n.sky != 0;
             Shadows = n.shadows != 0;
             Summary = summary;

@@ -105,6 +105,7 @@ namespace TetProbe
         public uint meshes;
         public uint shadow_casters;
         public uint shadow_caster_candidates;
+        public uint inside_probes;
     }
 
     internal static class NativeMethods

@@ -23,11 +23,14 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
                  rays=128, bounces=2, seed=0, threads=0, progress=None):
     """Proposes probe positions for a scene -> Placement(positions[N, 3], error_curve[K, 2]).
 
-    Candidates on a grid of `spacing` over the scene ("whole") or within walk_height above upward-facing
-    surfaces ("walkable"), none inside geometry or within `margin` of a surface, baked with `rays`, then
-    pruned to `target` probes or until the error would exceed error_bound (default 0.05 without a target,
-    none with one; 0 = none). The same seed gives the same result whatever the thread count;
-    progress(fraction, stage) may return True to cancel."""
+    Candidates on a grid of `spacing` (world units) over the scene (mode "whole") or within walk_height
+    = (min, max) world units above upward-facing (+y) surfaces (mode "walkable"), none inside geometry
+    or within `margin` (world units) of a surface, baked with `rays` per candidate and `bounces`, then
+    pruned to `target` probes or until the error would exceed error_bound (default 0.05 without a
+    target, none with one; 0 = none). positions[N, 3] are float32 world units; error_curve[K, 2] holds
+    (probe count, error) from all candidates down. The same `seed` gives the same result whatever the
+    `threads` count (0 = all cores); progress(fraction, stage) may return True to cancel
+    (Error(CANCELLED)); `scene` is a Scene."""
     options = _native.PlacementOptions()
     check(lib.tp_placement_options_init(ctypes.byref(options)))
     if mode not in _MODES:
@@ -58,7 +61,8 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
 
 
 def find_inside_probes(scene, positions):
-    """Indices (ascending, int64) of the probes at positions[N, 3] that are inside geometry."""
+    """Indices (ascending, int64) of the probes at positions[N, 3] (float32 world units) that are inside
+    the geometry of `scene` (a Scene): behind a one-sided triangle or within a closed mesh."""
     points, stride, _ = rows(positions, 3, "positions")
     out = np.empty(points.shape[0], dtype=np.uint32)
     count = ctypes.c_size_t()
@@ -68,8 +72,9 @@ def find_inside_probes(scene, positions):
 
 
 def fix_inside_probes(scene, positions, mode="drop", margin=0.1):
-    """The probes at positions[N, 3] with those inside geometry dropped ("drop") or pushed out to at least
-    margin from every surface ("push", every probe kept in order) -> positions[M, 3]."""
+    """The probes at positions[N, 3] (float32 world units) with those inside the geometry of `scene` (a
+    Scene) dropped (mode "drop") or pushed out to at least `margin` (world units) from every surface
+    (mode "push", every probe kept in order) -> positions[M, 3] float32."""
     if mode not in _FIXES:
         raise Error(Status.INVALID_ARGUMENT, "mode must be 'drop' or 'push' (got %r)" % (mode,))
     if not math.isfinite(margin) or margin < 0:
