@@ -328,6 +328,26 @@ void test_inside_probes(void) {
     EXPECT_STATUS(tp_find_inside_probes(scene, packed, 0, 4, NULL, 4, &count), TP_ERROR_INVALID_ARGUMENT);
     EXPECT_STATUS(tp_find_inside_probes(scene, packed, 8, 4, inside, 4, &count), TP_ERROR_INVALID_ARGUMENT);
 
+    /* The effects plan counts and names them. */
+    {
+        tp_effects_plan plan;
+        tp_bake_options bake;
+        char text[512];
+        tp_bake_options_init(&bake);
+        memset(&plan, 0, sizeof plan);
+        plan.struct_size = sizeof plan;
+        EXPECT_OK(tp_bake_plan(scene, strided, 16, 4, &bake, &plan, text, sizeof text));
+        CHECK(plan.inside_probes == 2);
+        CHECK(strstr(text, "inside geometry: 2 probes (1, 3)") != NULL);
+        EXPECT_OK(tp_bake_plan(scene, strided, 32, 2, &bake, &plan, text, sizeof text)); /* probes 0 and 2 */
+        CHECK(plan.inside_probes == 0 && strstr(text, "inside geometry") == NULL);
+        /* A caller compiled before the field: only struct_size bytes are written. */
+        plan.struct_size = (uint32_t)offsetof(tp_effects_plan, inside_probes);
+        plan.inside_probes = 77;
+        EXPECT_OK(tp_bake_plan(scene, strided, 16, 4, &bake, &plan, text, sizeof text));
+        CHECK(plan.inside_probes == 77);
+    }
+
     /* Drop: the free probes, in their order; in place over packed positions. */
     memcpy(out, packed, sizeof packed);
     EXPECT_OK(tp_fix_inside_probes(scene, out, 0, 4, TP_INSIDE_DROP, 0.1f, out, 4, &count));
