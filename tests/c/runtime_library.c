@@ -50,6 +50,31 @@ void test_runtime_library_refuses_bake_time(void) {
     EXPECT_UNSUPPORTED(tp_bake_plan, tp_bake_plan(NULL, positions, 0, 4, &options, &plan, text, sizeof text));
     CHECK(text[0] == '\0');
     EXPECT_UNSUPPORTED(tp_bake, tp_bake(NULL, positions, 0, 4, &options, out, 0));
+    {
+        unsigned char occlusion[16];
+        memset(occlusion, 0x5A, sizeof occlusion);
+        EXPECT_UNSUPPORTED(tp_bake_occlusion, tp_bake_occlusion(NULL, positions, 0, 4, &options, occlusion, 0, &id));
+        CHECK(occlusion[0] == 0x5A);
+    }
+    {
+        tp_placement_options placement;
+        float placed[6] = {42.0f, 0, 0, 0, 0, 0};
+        uint32_t inside[2] = {99, 99};
+        size_t bound = 7, count = 7, points = 7;
+        EXPECT_OK(tp_placement_options_init(&placement));
+        CHECK(placement.struct_size == sizeof placement && placement.spacing > 0.0f);
+        EXPECT_UNSUPPORTED(tp_place_probes_bound, tp_place_probes_bound(NULL, &placement, &bound));
+        CHECK(bound == 0);
+        EXPECT_UNSUPPORTED(tp_place_probes, tp_place_probes(NULL, &placement, placed, 2, &count, NULL, 0, &points));
+        CHECK(count == 0 && points == 0 && placed[0] == 42.0f);
+        count = 7;
+        EXPECT_UNSUPPORTED(tp_find_inside_probes, tp_find_inside_probes(NULL, positions, 0, 2, inside, 2, &count));
+        CHECK(count == 0 && inside[0] == 99);
+        count = 7;
+        EXPECT_UNSUPPORTED(tp_fix_inside_probes,
+                           tp_fix_inside_probes(NULL, positions, 0, 2, TP_INSIDE_DROP, 0.1f, placed, 2, &count));
+        CHECK(count == 0 && placed[0] == 42.0f);
+    }
     /* The run-time functions still work after a refusal, and the message is cleared. */
     EXPECT_OK(tp_sh_add_ambient(sh, rgb));
     CHECK(tp_last_error()[0] == '\0');
