@@ -124,6 +124,7 @@ int command_plan(const std::vector<std::string>& args) {
     j["meshes"] = plan.meshes;
     j["shadow_casters"] = plan.shadow_casters;
     j["shadow_caster_candidates"] = plan.shadow_caster_candidates;
+    j["inside_probes"] = plan.inside_probes;
     j["text"] = text;
     std::printf("%s\n", j.dump(2).c_str());
     return 0;

@@ -2,14 +2,17 @@
 import contextlib
 import ctypes
 import io
+import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 
 import numpy as np
 import pytest
 
+import tetprobe
 from tetprobe import cli
 
 C_TOOL = os.environ.get("TETPROBE_CLI", "")
@@ -150,6 +153,10 @@ def test_plan_matches_the_c_tool(tmp_path, name):
         c, python = both(tmp_path, "plan", scene, *flags)
         assert c[0] == 0 and ("effects plan: direct: " in c[1] or '"direct_lights": ' in c[1])
         assert_same(c, python)
+        if "--json" in flags:  # the count of probes inside geometry, as find_inside_probes finds them
+            scene_object = tetprobe.Scene.load(scene)
+            inside = len(tetprobe.find_inside_probes(scene_object, scene_object.probes))
+            assert '\n  "inside_probes": %d,\n  "text": ' % inside in c[1]
 
 
 @needs_c_tool
@@ -167,6 +174,81 @@ def test_bake_matches_the_c_tool_byte_for_byte(tmp_path):
     for err in (c[2], python[2]):
         assert err.endswith("bake   100% bake\n")
         assert all(re.fullmatch(r"bake   [ \d]{2}\d% bake", line) for line in err.splitlines())
+
+
+@needs_c_tool
+def test_plan_json_counts_the_probes_inside_geometry(tmp_path):
+    # The two rooms plus a probe inside the table (a closed box from x 5.6 to 6.8, y 0 to 0.75, z 1.4 to 2.6).
+    with open(os.path.join(SCENES, "two_rooms.json")) as f:
+        document = json.load(f)
+    shutil.copy(os.path.join(SCENES, document["meshes"][0]["obj"]), tmp_path)
+    document["probes"].append([6.2, 0.4, 2.0])
+    scene = tmp_path / "inside.json"
+    scene.write_text(json.dumps(document))
+    c, python = both(tmp_path, "plan", scene, "--json")
+    assert c[0] == 0
+    assert_same(c, python)
+    last = len(document["probes"]) - 1
+    assert '\n  "inside_probes": 1,\n' in c[1] and "inside geometry: 1 probe (%d)" % last in c[1]
+
+
+def assert_progress_lines(err, label):
+    """Progress lines on stderr: how many come depends on timing, their form does not."""
+    lines = [line for line in err.splitlines() if "%" in line]
+    assert lines and all(re.fullmatch(label + r" +[ \d]{2}\d% [a-z]+", line) for line in lines), err
+    return [line for line in err.splitlines() if "%" not in line]
+
+
+@needs_c_tool
+@pytest.mark.parametrize("mode", ["whole", "walkable"])
+def test_place_matches_the_c_tool_byte_for_byte(tmp_path, mode):
+    scene = os.path.join(SCENES, "two_rooms.json")
+    probes, curve = tmp_path / "probes.csv", tmp_path / "curve.json"
+    c, python = both(tmp_path, "place", scene, "-o", probes, "--curve", curve, "--mode", mode, "--spacing", "1",
+                     "--target", "40", "--rays", "32", "--seed", "7", "--threads", "1", files=[probes, curve])
+    assert c[0] == python[0] == 0, (c, python)
+    assert c[3][0] == python[3][0]  # the CSV's bytes
+    assert c[3][0].count(b"\n") == 40 and re.fullmatch(rb"([-\d.e+]+,[-\d.e+]+,[-\d.e+]+\n)+", c[3][0])
+    # The curve's bytes but for the measured seconds; the printed lines but for the timing and file names.
+    seconds = re.compile(rb'\n "seconds": [\d.e+-]+,\n')
+    assert seconds.search(c[3][1]) and seconds.search(python[3][1])
+    assert seconds.sub(b"", c[3][1]) == seconds.sub(b"", python[3][1])
+    assert b'"probes": 40\n  }\n ]' in c[3][1] and b'"mode": "%s"' % mode.encode() in c[3][1]
+    timing = re.compile(r" in \d+\.\d\d s,")
+    assert timing.search(c[1]) and timing.search(python[1])
+    assert timing.sub("", c[1]) == timing.sub("", python[1])
+    assert c[1].startswith("placed 40 probes (of ")
+    assert assert_progress_lines(c[2], "place") == assert_progress_lines(python[2], "place") == []
+
+
+@needs_c_tool
+def test_place_failures_match(tmp_path):
+    scene = os.path.join(SCENES, "two_rooms.json")
+    probes = tmp_path / "probes.csv"
+    usage_errors = [["--mode", "flying"], ["--target", "-3"], ["--spacing", "wide"], ["--curve"]]
+    for extra in usage_errors:
+        c, python = both(tmp_path, "place", scene, "-o", probes, *extra, files=[probes])
+        assert c[0] == python[0] == 2 and c[3] == python[3] == [None], extra
+        assert c[2].splitlines()[0] == python[2].splitlines()[0], extra
+    c, python = both(tmp_path, "place", scene, files=[probes])
+    assert c[0] == python[0] == 2 and c[2].splitlines()[0] == python[2].splitlines()[0]
+    failures = [["--target", "500", "--rays", "8", "--threads", "1"], ["--spacing", "0"], ["--rays", "0"],
+                ["--margin", "100"]]
+    for extra in failures:
+        c, python = both(tmp_path, "place", scene, "-o", probes, *extra, files=[probes])
+        assert c[0] == python[0] == 1 and c[1] == python[1] == "" and c[3] == python[3] == [None], extra
+        messages = [line for line in c[2].splitlines() if "%" not in line]
+        assert messages == [line for line in python[2].splitlines() if "%" not in line], extra
+        assert len(messages) == 1 and messages[0].startswith("tetprobe: error: "), extra
+        if extra[1] == "500":
+            assert "placing probes failed: TP_ERROR_INVALID_ARGUMENT: target_count 500 is more than" in messages[0]
+    for args in (["place", tmp_path / "missing.json", "-o", probes],
+                 ["place", scene, "-o", tmp_path / "no-such-dir" / "p.csv", "--spacing", "2", "--rays", "8"]):
+        c, python = both(tmp_path, *args)
+        assert c[0] == python[0] == 1 and c[1] == python[1] == ""
+        messages = [line for line in c[2].splitlines() if "%" not in line]
+        assert messages == [line for line in python[2].splitlines() if "%" not in line] and len(messages) == 1
+    assert messages[0].startswith("tetprobe: error: cannot write ")
 
 
 @needs_c_tool

@@ -7,8 +7,11 @@ by the same Grisu2 as nlohmann's dump (not always the shortest digits). The C to
 is not part of it.
 """
 
+import contextlib
+import ctypes
 import json
 import math
+import os
 import re
 import struct
 import sys
@@ -19,7 +22,9 @@ import numpy as np
 
 from . import sh as sh_functions
 from .errors import Error
+from . import _native
 from .library import library_version, status_name
+from .placement import _placement_bound, _placement_options, place_probes
 from .scene import Scene, bake, bake_plan
 from .store import Store
 
@@ -32,6 +37,9 @@ USAGE = (
     "  tetprobe query STORE x y z [--weights] [--json]\n"
     "  tetprobe bake SCENE.json -o STORE [--rays N] [--bounces N] [--seed N] [--threads N]\n"
     "  tetprobe plan SCENE.json [--rays N] [--bounces N] [--seed N] [--threads N] [--json]\n"
+    "  tetprobe place SCENE.json -o PROBES.csv [--mode whole|walkable] [--spacing S] [--margin M]\n"
+    "                 [--target N] [--error E] [--rays N] [--seed N] [--threads N] [--curve CURVE.json]\n"
+    "                 [--min-height H] [--max-height H]   probe positions proposed for a scene\n"
     "  tetprobe version\n"
 )
 
@@ -298,6 +306,29 @@ def dump_json(value, indent=None, level=0):
 
 def out(text):
     sys.stdout.write(text)
+
+
+def write_file_atomically(path, data):
+    """data (bytes) at path through a temporary file renamed over it, as samples/cli does: a failed write
+    leaves no half-written file, and reports "cannot write PATH: <strerror>"."""
+    temporary = "%s.tmp%d" % (path, os.getpid())
+    try:
+        descriptor = os.open(temporary, os.O_WRONLY | os.O_CREAT | os.O_TRUNC, 0o666)
+    except OSError as error:
+        raise Failure("cannot write %s: %s" % (path, os.strerror(error.errno))) from None
+    try:
+        try:
+            view = memoryview(data)
+            while view:
+                view = view[os.write(descriptor, view):]
+            os.fsync(descriptor)
+        finally:
+            os.close(descriptor)
+        os.rename(temporary, path)
+    except OSError as error:
+        with contextlib.suppress(OSError):
+            os.remove(temporary)
+        raise Failure("cannot write %s: %s" % (path, os.strerror(error.errno))) from None
 
 
 # ---- probe files, read as samples/cli/probe_file.cpp does
@@ -581,9 +612,73 @@ def command_plan(args):
         return 0
     j = {"probes": len(positions)}
     for key in ("lights", "direct_lights", "realtime_lights", "out_of_range_lights", "sky", "emissive_meshes",
-                "bounces", "shadows", "meshes", "shadow_casters", "shadow_caster_candidates", "text"):
+                "bounces", "shadows", "meshes", "shadow_casters", "shadow_caster_candidates", "inside_probes", "text"):
         j[key] = plan[key]
     out(dump_json(j, 2) + "\n")
+    return 0
+
+
+def _default_text(value):
+    """A float default as std::to_string prints it ("%f"), which the C tool parses back."""
+    return "%f" % float(value)
+
+
+def command_place(args):
+    a = Arguments(args, {"-o", "--mode", "--spacing", "--margin", "--target", "--error", "--rays", "--bounces",
+                         "--seed", "--threads", "--curve", "--min-height", "--max-height"}, set())
+    if len(a.positional) != 1 or not a.has("-o"):
+        raise UsageError("place takes SCENE.json and -o PROBES.csv")
+    defaults = _native.PlacementOptions()
+    checked("tp_placement_options_init", _native.check, _native.lib.tp_placement_options_init(ctypes.byref(defaults)))
+    mode = a.value("--mode", "whole")
+    if mode not in ("whole", "walkable"):
+        raise UsageError("--mode is whole or walkable")
+    # In the C tool's order, each through a double into the float or unsigned field it fills.
+    spacing = parse_number(a.value("--spacing", _default_text(defaults.spacing)), "--spacing")
+    margin = parse_number(a.value("--margin", _default_text(defaults.margin)), "--margin")
+    min_height = parse_number(a.value("--min-height", _default_text(defaults.walk_min_height)), "--min-height")
+    max_height = parse_number(a.value("--max-height", _default_text(defaults.walk_max_height)), "--max-height")
+    target = parse_count(a.value("--target", "0"), "--target") & 0xFFFFFFFF
+    # A target alone prunes to it; an error bound alone (or with the target) also stops pruning.
+    error_bound = parse_number(a.value("--error", "0" if a.has("--target") else _default_text(defaults.error_bound)),
+                               "--error")
+    rays = parse_count(a.value("--rays", str(defaults.rays)), "--rays") & 0xFFFFFFFF
+    bounces = parse_count(a.value("--bounces", str(defaults.bounces)), "--bounces") & 0xFFFFFFFF
+    seed = parse_count(a.value("--seed", "0"), "--seed")
+    threads = parse_count(a.value("--threads", "0"), "--threads") & 0xFFFFFFFF
+    settings = {"mode": mode, "spacing": spacing, "margin": margin, "walk_height": (min_height, max_height),
+                "target": target, "error_bound": error_bound, "rays": rays, "bounces": bounces, "seed": seed,
+                "threads": threads}
+
+    scene_path = a.positional[0]
+    scene = checked("loading the scene", Scene.load, scene_path)
+    checked("sizing the placement", lambda: _placement_bound(scene, _placement_options(**settings)))
+    bar = ProgressBar("place")
+    start = time.perf_counter()
+    try:
+        placement = checked("placing probes", place_probes, scene, progress=bar, **settings)
+    finally:
+        seconds = time.perf_counter() - start
+        bar.finish()
+    positions, curve = placement.positions, placement.error_curve
+
+    path = a.value("-o", "")
+    csv = "".join("%.9g,%.9g,%.9g\n" % tuple(float(v) for v in p) for p in positions)
+    write_file_atomically(path, csv.encode())
+    points = len(curve)
+    error = float(curve[-1, 1]) if points else 0.0
+    out("placed %u probes (of %.0f candidates) in %.2f s, error %.4f (relative irradiance change at "
+        "held-out points); wrote %s\n" % (len(positions), float(curve[0, 0]) if points else len(positions), seconds,
+                                          error, path))
+    if a.has("--curve"):
+        # nlohmann::json (not ordered): keys sorted; floats printed as the double they widen to.
+        as_float = [float(np.float32(v)) for v in (spacing, margin)]
+        document = {"error_curve": [{"error": float(e), "probes": int(n)} for n, e in curve],
+                    "margin": as_float[1], "mode": mode, "scene": scene_path, "seconds": seconds,
+                    "spacing": as_float[0]}
+        curve_path = a.value("--curve", "")
+        write_file_atomically(curve_path, (dump_json(document, 1) + "\n").encode())
+        out("wrote %s (%u points of error against probe count)\n" % (curve_path, points))
     return 0
 
 
@@ -592,14 +687,14 @@ def command_version(args):
     return 0
 
 
-#: Subcommand -> function(args) -> exit status. Probe placement (`place`, issue 10) joins here as one entry
-#: once tetprobe.place_probes exists, with its usage line added to USAGE, as in samples/cli/main.cpp.
+#: Subcommand -> function(args) -> exit status, as in samples/cli/main.cpp.
 COMMANDS = {
     "build": command_build,
     "info": command_info,
     "query": command_query,
     "bake": command_bake,
     "plan": command_plan,
+    "place": command_place,
     "version": command_version,
 }
 

@@ -31,6 +31,23 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
     (probe count, error) from all candidates down. The same `seed` gives the same result whatever the
     `threads` count (0 = all cores); progress(fraction, stage) may return True to cancel
     (Error(CANCELLED)); `scene` is a Scene."""
+    options = _placement_options(mode, spacing, margin, walk_height, target, error_bound, rays, bounces, seed,
+                                 threads)
+    bound = _placement_bound(scene, options)
+    callback = Progress(progress)
+    options.progress = callback.function
+    positions = np.empty((bound, 3), dtype=np.float32)
+    curve = np.empty((bound + 1, 2), dtype=np.float32)
+    count, points = ctypes.c_size_t(), ctypes.c_size_t()
+    status = lib.tp_place_probes(scene._live(), ctypes.byref(options), positions, bound, ctypes.byref(count),
+                                 curve, bound + 1, ctypes.byref(points))
+    callback.reraise()
+    check(status)
+    return Placement(positions[:count.value].copy(), curve[:points.value].copy())
+
+
+def _placement_options(mode, spacing, margin, walk_height, target, error_bound, rays, bounces, seed, threads):
+    """place_probes' arguments as a tp_placement_options (without progress)."""
     options = _native.PlacementOptions()
     check(lib.tp_placement_options_init(ctypes.byref(options)))
     if mode not in _MODES:
@@ -46,18 +63,15 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
         error_bound = 0.0 if target else options.error_bound
     options.error_bound = error_bound
     options.rays, options.bounces, options.seed, options.threads = rays, bounces, seed, threads
-    callback = Progress(progress)
-    options.progress = callback.function
+    return options
+
+
+def _placement_bound(scene, options):
+    """tp_place_probes_bound: the most probes (and curve points less one) a placement with options returns.
+    The command line calls it on its own to name the failing step as the C tool does."""
     bound = ctypes.c_size_t()
     check(lib.tp_place_probes_bound(scene._live(), ctypes.byref(options), ctypes.byref(bound)))
-    positions = np.empty((bound.value, 3), dtype=np.float32)
-    curve = np.empty((bound.value + 1, 2), dtype=np.float32)
-    count, points = ctypes.c_size_t(), ctypes.c_size_t()
-    status = lib.tp_place_probes(scene._live(), ctypes.byref(options), positions, bound.value, ctypes.byref(count),
-                                 curve, bound.value + 1, ctypes.byref(points))
-    callback.reraise()
-    check(status)
-    return Placement(positions[:count.value].copy(), curve[:points.value].copy())
+    return bound.value
 
 
 def find_inside_probes(scene, positions):
