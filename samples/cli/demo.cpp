@@ -319,16 +319,10 @@ void demo_baked_scene(const fs::path& scene_path, const Arguments& a, const fs::
         check(tp_store_interpolate(leak.get(), p, &scan_hint, s), "tp_store_interpolate");
         return mean_irradiance(s);
     });
-    const Image right = colour_map(fixed, width, height, 0.0f, vmax);
-    Image both;
-    both.width = 2 * width + 8;
-    both.height = height;
-    both.rgb.assign(size_t(both.width) * height * 3, 255);
-    for (int row = 0; row < height; ++row) {
-        std::memcpy(&both.rgb[size_t(row) * both.width * 3], &image.rgb[size_t(row) * width * 3], size_t(width) * 3);
-        std::memcpy(&both.rgb[(size_t(row) * both.width + width + 8) * 3], &right.rgb[size_t(row) * width * 3],
-                    size_t(width) * 3);
-    }
+    Image right = colour_map(fixed, width, height, 0.0f, vmax);
+    mark_probes(right, 0, width, height, box, y, 0.25f * (hi[1] - lo[1]) + 1e-3f, baked.positions);
+    const Image both = framed_figure({slice_image, right}, {"without leak control", "with leak control"},
+                                     {box[0], box[1], box[2], box[3]}, 0.0f, vmax, "irradiance");
     const fs::path leak_png = out_dir / (stem + "_leak_fix.png");
     write_png(leak_png.string(), both);
     std::printf("wrote %s (the same slice without | with leak control: %u probe pairs cannot see each other)\n",
