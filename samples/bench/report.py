@@ -292,7 +292,7 @@ class Report:
             return out + not_run(self.missing["leak"]) + [""]
         out += ["%s: %s probes baked (%s rays, %s bounces), one store built without and one with the scene "
                 "(leak control: %s blocked probe pairs). Irradiance (mean over directions) along paths across the "
-                "dividing wall, against a bake at the path points themselves; leak error = sum |store - "
+                "dividing wall (points inside the wall left out), against a bake at the path points themselves; leak error = sum |store - "
                 "reference| / sum reference along the path. Cost: cold batch queries (no hint), the least of "
                 "three medians." % (doc.get("scene"), num(doc.get("probes")), num(doc.get("rays")),
                                     num(doc.get("bounces")), num(doc.get("leak_edges"))), ""]

@@ -186,7 +186,9 @@ class Plotter:
                 label="without leak control (error %.3f)" % path["leak_error"]["without"])
         ax.plot(x, [s["with"] for s in samples], linewidth=1.3,
                 label="with leak control (error %.3f)" % path["leak_error"]["with"])
-        ax.axvspan(3.98, 4.02, color="grey", alpha=0.4, label="wall (x = 4)")
+        # The widest gap between samples is the wall, whose inside points the part leaves out.
+        gap = max(zip(x, x[1:]), key=lambda pair: pair[1] - pair[0])
+        ax.axvspan(gap[0], gap[1], color="grey", alpha=0.4, label="wall (points inside left out)")
         ax.set_xlabel("x (m) along the path %s" % path["name"])
         ax.set_ylabel("irradiance (mean over directions)")
         ax.set_title("%s: irradiance across the wall" % os.path.basename(str(doc.get("scene"))))
@@ -218,6 +220,6 @@ class Plotter:
         right.set_xlabel("probes")
         right.set_ylabel("mean relative irradiance error vs a bake there")
         right.set_title("error against a reference (%d points)" % doc["query_points"])
-        right.legend(fontsize=7)
+        right.legend(fontsize=7, loc="lower left")
         right.grid(True, alpha=0.3)
         return fig, "placement_error.png"
