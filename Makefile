@@ -57,10 +57,10 @@ cross: deps
 
 # The benchmark report (issue 8): every part of tetprobe_bench writes its JSON (the store part its
 # markdown) into $(BENCH_OUT), scipy times find_simplex on the locate part's points, and report.py
-# writes report.md and the PNG plots there. A part that fails is named "not run" in the report, so the
-# old results of a part are removed first. `make bench-docs` copies the report into docs/bench/.
+# writes report.md and the PNG plots there (placement_vs_uniform.py adds placement.json before it). A
+# part that fails is named "not run" in the report, so the old results of a part are removed first. `make bench-docs` copies the report into docs/bench/.
 BENCH_OUT ?= $(BUILD)/bench
-BENCH_PARTS ?= methods precision locate bake probes
+BENCH_PARTS ?= methods precision locate bake probes leak
 bench: build
 	rm -rf $(BENCH_OUT) && mkdir -p $(BENCH_OUT)
 	$(BUILD)/samples/tetprobe_bench store > $(BENCH_OUT)/store.md.tmp && mv $(BENCH_OUT)/store.md.tmp $(BENCH_OUT)/store.md \
@@ -70,6 +70,9 @@ bench: build
 	    || echo "tetprobe_bench $$part failed: the report says so"; \
 	done
 	/usr/bin/python3 samples/bench/scipy_locate.py $(BENCH_OUT)
+	TETPROBE_LIBRARY=$(BUILD)/libtetprobe.so PYTHONPATH=bindings/python \
+	  /usr/bin/python3 samples/bench/placement_vs_uniform.py $(BENCH_OUT) > $(BENCH_OUT)/placement.txt \
+	  || echo "placement_vs_uniform.py failed: the report says so"
 	/usr/bin/python3 samples/bench/report.py $(BENCH_OUT)
 
 bench-docs:

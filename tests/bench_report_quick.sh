@@ -42,7 +42,8 @@ assert all(math.isfinite(l["rms_error"]) for l in levels)
 scipy = load("scipy_locate.json")
 assert "not_run" in scipy or all(r["outside"] == 0 for s in scipy["sizes"] for r in s["rows"]), scipy
 report = open(os.path.join(out, "report.md")).read()
-for heading in ("## 3. Locate", "## 4. Bake", "## 5. Probe count", "## 6. Headline ratios"):
+for heading in ("## 3. Locate", "## 4. Bake", "## 5. Probe count", "## 6. Leak control",
+                "## 7. Probe placement", "## 8. Headline ratios"):
     assert heading in report, heading
 print("bench report smoke run: ok")
 PY

@@ -1,10 +1,13 @@
 // tetprobe_bench precision [--out DIR] [--quick] [--scene PATH]: part 2 of issue 8. SH float32 (the baked
 // floats blended with tetprobe's own weights, tp_store_weights) against half (tp_store_interpolate), fast
 // against compact layout, and the evaluation choices L1, ZH3 (from L1) and full L2, each without a window,
-// with Sloan's window and with the smallest non-negative window. Orders and Sloan's window are applied per
-// query (tp_sh_eval_irradiance_ex on the blend); the non-negative window, which costs tens of minimum searches,
-// is applied once per probe (tp_sh_apply_options before the store is built), as tetprobe.h advises. Writes
-// DIR/precision.json (schema at the top of bench_methods.cpp).
+// with Sloan's window and with the smallest non-negative window. Orders (ZH3 included) and Sloan's window are
+// applied per query (tp_sh_eval_irradiance_ex on the blend); the non-negative window, which costs tens of
+// minimum searches, is applied once per probe (tp_sh_apply_options before the store is built). ZH3 and the
+// non-negative window do not commute with interpolation (tetprobe.h): per probe is a valid interpolant but
+// not the per-query one, so the non-negative rows measure the per-probe interpolant (windowed probes
+// blended), not the window applied to each query's blend. Writes DIR/precision.json (schema at the top
+// of bench_methods.cpp).
 #include "bench.h"
 
 #include "bench_timing.h"

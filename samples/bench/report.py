@@ -3,8 +3,8 @@
 Usage: /usr/bin/python3 samples/bench/report.py DIR
 
 Reads what `tetprobe_bench ... --out DIR` and samples/bench/scipy_locate.py wrote into DIR
-(methods.json, precision.json, locate.json, scipy_locate.json, bake.json, probes.json, and the store
-benchmark's markdown store.md) and writes DIR/report.md and the plots (report_plots.py) beside it,
+(methods.json, precision.json, locate.json, scipy_locate.json, bake.json, probes.json, leak.json, and the
+store benchmark's markdown store.md) and what samples/bench/placement_vs_uniform.py wrote (placement.json) and writes DIR/report.md and the plots (report_plots.py) beside it,
 and DIR/readme_section.md, the README's digest (images under docs/bench/, where `make bench-docs`
 copies them).
 A part whose file is missing, unreadable or marked "not_run", and a peer a part could not run, is
@@ -25,6 +25,8 @@ PARTS = {
     "scipy_locate": ("scipy_locate.json", "samples/bench/scipy_locate.py"),
     "bake": ("bake.json", "tetprobe_bench bake"),
     "probes": ("probes.json", "tetprobe_bench probes"),
+    "leak": ("leak.json", "tetprobe_bench leak"),
+    "placement": ("placement.json", "samples/bench/placement_vs_uniform.py"),
 }
 
 
@@ -281,7 +283,50 @@ class Report:
         out += [""] + self.plot("probe_convergence", doc) + [""]
         return out
 
-    # ---- 6. headline ratios
+    # ---- 6. leak control
+
+    def leak(self):
+        out = ["## 6. Leak control", ""]
+        doc = self.docs.get("leak")
+        if doc is None:
+            return out + not_run(self.missing["leak"]) + [""]
+        out += ["%s: %s probes baked (%s rays, %s bounces), one store built without and one with the scene "
+                "(leak control: %s blocked probe pairs). Irradiance (mean over directions) along paths across the "
+                "dividing wall (points inside the wall left out), against a bake at the path points themselves; leak error = sum |store - "
+                "reference| / sum reference along the path. Cost: cold batch queries (no hint), the least of "
+                "three medians." % (doc.get("scene"), num(doc.get("probes")), num(doc.get("rays")),
+                                    num(doc.get("bounces")), num(doc.get("leak_edges"))), ""]
+        out += table([("path", "<"), ("leak error without", ">"), ("with leak control", ">")], leak_rows(doc))
+        out.append("")
+        out += table([("cost per query", "<"), ("ns without", ">"), ("ns with", ">"), ("with / without", ">")],
+                     leak_cost_rows(doc))
+        bytes_ = doc.get("store_bytes", {})
+        out += ["", "Store bytes: %s without, %s with leak control." % (num(bytes_.get("without")),
+                                                                         num(bytes_.get("with"))), ""]
+        out += self.plot("leak_path", doc) + [""]
+        return out
+
+    # ---- 7. placement
+
+    def placement(self):
+        out = ["## 7. Probe placement", ""]
+        doc = self.docs.get("placement")
+        if doc is None:
+            return out + not_run(self.missing["placement"]) + [""]
+        out += ["%s: `tetprobe.place_probes` from %s candidates (spacing %s m, %s rays), pruned to a target. "
+                "Left of the plot: the placement's own error curve (the relative irradiance change at its "
+                "held-out points against all candidates, low-sample). Table and right: the placed probes, a "
+                "uniform subsample of the same candidates and the scene's hand-placed probes, each baked at %s "
+                "rays, judged at %s random free points against a bake there (mean relative irradiance "
+                "error)." % (doc.get("scene"), num(doc.get("candidates")), num(doc.get("spacing")),
+                             num(doc.get("placement_rays")), num(doc.get("reference_rays")),
+                             num(doc.get("query_points"))), ""]
+        out += table([("probes", ">"), ("placed", ">"), ("uniform subsample", ">"), ("placement s", ">")],
+                     placement_rows(doc))
+        out += [""] + self.plot("placement_error", doc) + [""]
+        return out
+
+    # ---- 8. headline ratios
 
     def ratios(self):
         """Rows of (ratio, value text, source) computed from the parts that ran."""
@@ -323,7 +368,7 @@ class Report:
         return rows
 
     def headline(self):
-        out = ["## 6. Headline ratios", ""]
+        out = ["## 8. Headline ratios", ""]
         rows = self.ratios()
         if not rows:
             return out + not_run("no part that the ratios come from ran") + [""]
@@ -351,8 +396,8 @@ class Report:
 
     def markdown(self):
         body = []
-        for section in (self.methods, self.precision, self.locate, self.bake, self.probe_count, self.headline,
-                        self.store):
+        for section in (self.methods, self.precision, self.locate, self.bake, self.probe_count, self.leak,
+                        self.placement, self.headline, self.store):
             body += section()
         out = ["# tetprobe benchmark report", "",
                "Written by `samples/bench/report.py` from `make bench`. Ratios within one run are the result; "
@@ -360,6 +405,31 @@ class Report:
         out += ["Not run in this report:" if self.not_run else "Every part and peer ran.", ""]
         out += ["- %s: %s" % (what, why) for what, why in self.not_run]
         return "\n".join(out + [""] + body).rstrip() + "\n"
+
+
+def leak_rows(doc):
+    return [[p.get("name"), num(p["leak_error"]["without"]), num(p["leak_error"]["with"])]
+            for p in doc.get("paths", [])]
+
+
+def leak_cost_rows(doc):
+    rows = []
+    for key, label in (("rooms", "uniform in the rooms"), ("wall", "within 0.6 m of the wall")):
+        cost = doc.get("cost_ns_per_query", {}).get(key)
+        if cost:
+            rows.append([label, num(cost["without"]), num(cost["with"]),
+                         num(cost["with"] / cost["without"]) + "x" if cost["without"] else "-"])
+    return rows
+
+
+def placement_rows(doc):
+    rows = [["%s of %s" % (num(c["probes"]), num(doc.get("candidates"))), num(c["placed"]), num(c["uniform"]),
+             num(c.get("placement_seconds"))] for c in doc.get("comparison", [])]
+    hand = doc.get("hand_placed")
+    if hand:
+        rows.append(["%s hand-placed" % num(hand["probes"]), "-", "-", "-"] if hand.get("error") is None else
+                    ["%s hand-placed" % num(hand["probes"]), num(hand["error"]), "-", "-"])
+    return rows
 
 
 def readme_section(report, images="docs/bench/"):
@@ -425,9 +495,31 @@ def readme_section(report, images="docs/bench/"):
         out += table([("probes", ">"), ("spacing x (m)", ">"), ("RMS error", ">"), ("fast bytes", ">"),
                       ("compact bytes", ">")], rows)
         out += ["", "![probe count](%sprobe_convergence.png)" % images, ""]
+    out += readme_leak_and_placement(report, images)
     if report.not_run:
         out += ["Not run in this report: " + "; ".join("%s (%s)" % (w, y) for w, y in report.not_run) + ".", ""]
     return "\n".join(out).rstrip() + "\n"
+
+
+def readme_leak_and_placement(report, images="docs/bench/"):
+    """The README's short tables of leak control and placement (each only when its part ran)."""
+    out = []
+    leak = report.docs.get("leak")
+    if leak:
+        out += ["**Leak control** (two rooms: irradiance along paths across the wall against a bake there; "
+                "leak error = sum |store - reference| / sum reference)", ""]
+        out += table([("path", "<"), ("leak error without", ">"), ("with leak control", ">")], leak_rows(leak))
+        out += [""] + table([("cost per query (cold)", "<"), ("ns without", ">"), ("ns with", ">"),
+                             ("with / without", ">")], leak_cost_rows(leak))
+        out += ["", "![leak control](%sleak_path.png)" % images, ""]
+    placement = report.docs.get("placement")
+    if placement:
+        out += ["**Probe placement** (two rooms, %s candidates; mean relative irradiance error against a bake "
+                "at %s free points)" % (num(placement.get("candidates")), num(placement.get("query_points"))), ""]
+        out += table([("probes", ">"), ("placed", ">"), ("uniform subsample", ">"), ("placement s", ">")],
+                     placement_rows(placement))
+        out += ["", "![placement](%splacement_error.png)" % images, ""]
+    return out
 
 
 def main(argv):

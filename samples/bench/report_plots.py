@@ -172,3 +172,54 @@ class Plotter:
         right.legend(fontsize=7)
         right.grid(True, which="both", alpha=0.3)
         return fig, "probe_convergence.png"
+
+    # ---- part 6
+
+    def leak_path(self, doc):
+        plt = self.plt
+        path = doc["paths"][0]
+        samples = path["samples"]
+        x = [s["x"] for s in samples]
+        fig, ax = plt.subplots(figsize=(7.2, 3.8))
+        ax.plot(x, [s["reference"] for s in samples], color="black", linewidth=2.2, label="reference (baked there)")
+        ax.plot(x, [s["without"] for s in samples], linewidth=1.3,
+                label="without leak control (error %.3f)" % path["leak_error"]["without"])
+        ax.plot(x, [s["with"] for s in samples], linewidth=1.3,
+                label="with leak control (error %.3f)" % path["leak_error"]["with"])
+        # The widest gap between samples is the wall, whose inside points the part leaves out.
+        gap = max(zip(x, x[1:]), key=lambda pair: pair[1] - pair[0])
+        ax.axvspan(gap[0], gap[1], color="grey", alpha=0.4, label="wall (points inside left out)")
+        ax.set_xlabel("x (m) along the path %s" % path["name"])
+        ax.set_ylabel("irradiance (mean over directions)")
+        ax.set_title("%s: irradiance across the wall" % os.path.basename(str(doc.get("scene"))))
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=2)
+        ax.grid(True, alpha=0.3)
+        return fig, "leak_path.png"
+
+    # ---- part 7
+
+    def placement_error(self, doc):
+        plt = self.plt
+        curve = doc["error_curve"]
+        fig, (left, right) = plt.subplots(1, 2, figsize=(10.5, 4.0))
+        fig.subplots_adjust(wspace=0.3)
+        left.plot([c[0] for c in curve], [c[1] for c in curve], marker="o", markersize=3)
+        left.invert_xaxis()
+        left.set_xlabel("probes (pruned from %d candidates)" % doc["candidates"])
+        left.set_ylabel("irradiance change at held-out points (relative)")
+        left.set_title("placement's own error curve")
+        left.grid(True, alpha=0.3)
+        rows = doc["comparison"]
+        n = [r["probes"] for r in rows]
+        right.plot(n, [r["placed"] for r in rows], marker="o", label="placed")
+        right.plot(n, [r["uniform"] for r in rows], marker="s", label="uniform subsample of the candidates")
+        hand = doc.get("hand_placed")
+        if hand and hand.get("error") is not None:
+            right.scatter([hand["probes"]], [hand["error"]], marker="*", s=90, color="black", zorder=3,
+                          label="hand-placed")
+        right.set_xlabel("probes")
+        right.set_ylabel("mean relative irradiance error vs a bake there")
+        right.set_title("error against a reference (%d points)" % doc["query_points"])
+        right.legend(fontsize=7, loc="lower left")
+        right.grid(True, alpha=0.3)
+        return fig, "placement_error.png"

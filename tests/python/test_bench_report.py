@@ -2,7 +2,8 @@
 
 The fixtures in bench_fixtures/ follow the schemas of tetprobe_bench's parts: methods.json and
 precision.json as documented in samples/bench/bench_methods.cpp (hand-made values), locate.json,
-scipy_locate.json, bake.json and probes.json from a `--quick` run.
+scipy_locate.json, bake.json and probes.json from a `--quick` run, leak.json from `tetprobe_bench leak` and
+placement.json from samples/bench/placement_vs_uniform.py.
 """
 import json
 import os
@@ -19,9 +20,10 @@ import report  # noqa: E402
 import scipy_locate  # noqa: E402
 
 SECTIONS = ["## 1. Interpolation methods", "## 2. Precision, layout and SH order", "## 3. Locate", "## 4. Bake",
-            "## 5. Probe count", "## 6. Headline ratios", "## Store benchmark"]
+            "## 5. Probe count", "## 6. Leak control", "## 7. Probe placement", "## 8. Headline ratios",
+            "## Store benchmark"]
 PLOTS = ["methods_error_vs_time_fixture_rooms.png", "slices_fixture_rooms.png", "popping_fixture_rooms.png",
-         "bake_error_vs_time.png", "probe_convergence.png"]
+         "bake_error_vs_time.png", "probe_convergence.png", "leak_path.png", "placement_error.png"]
 
 
 def _results(tmp_path, leave_out=()):
@@ -67,14 +69,15 @@ def test_every_section_and_plot_of_a_complete_run(tmp_path):
     assert "| 1 | 2 |" in _section(text, "## Store benchmark")
     # The README's digest links the plots where `make bench-docs` puts them, and repeats the ratios.
     digest = (tmp_path / "readme_section.md").read_text()
-    for name in ("methods_error_vs_time_fixture_rooms.png", "bake_error_vs_time.png", "probe_convergence.png"):
+    for name in ("methods_error_vs_time_fixture_rooms.png", "bake_error_vs_time.png", "probe_convergence.png",
+                 "leak_path.png", "placement_error.png"):
         assert "(docs/bench/%s)" % name in digest
     assert "| grid error / ours at equal memory (RMS), fixture rooms | 1.4x |" in digest
 
 
 def test_headline_ratios_come_from_the_parts(tmp_path, no_plots):
     text = _run(_results(tmp_path))
-    ratios = _section(text, "## 6. Headline ratios")
+    ratios = _section(text, "## 8. Headline ratios")
     with open(os.path.join(FIXTURES, "methods.json")) as f:
         methods = {m["id"]: m for m in json.load(f)["scenes"][0]["methods"]}
     grid = methods["grid_equal_memory"]["rms_error"] / methods["tetrahedral_fast"]["rms_error"]
@@ -100,6 +103,54 @@ def test_a_missing_part_is_said_not_dropped(tmp_path, no_plots):
     summary = text[:text.index(SECTIONS[0])]
     assert "- tetprobe_bench methods: methods.json is missing" in summary
     assert "- tetprobe_bench probes: probes.json is missing" in summary
+
+
+def test_leak_and_placement_tables_come_from_their_parts(tmp_path, no_plots):
+    text = _run(_results(tmp_path))
+    with open(os.path.join(FIXTURES, "leak.json")) as f:
+        leak = json.load(f)
+    section = _section(text, "## 6. Leak control")
+    for path in leak["paths"]:
+        assert "| %s | %s | %s |" % (path["name"], report.num(path["leak_error"]["without"]),
+                                     report.num(path["leak_error"]["with"])) in section
+    wall = leak["cost_ns_per_query"]["wall"]
+    assert "| within 0.6 m of the wall | %s | %s | %sx |" % (
+        report.num(wall["without"]), report.num(wall["with"]), report.num(wall["with"] / wall["without"])) in section
+    with open(os.path.join(FIXTURES, "placement.json")) as f:
+        placement = json.load(f)
+    section = _section(text, "## 7. Probe placement")
+    for row in placement["comparison"]:
+        assert "| %d of %d | %s | %s |" % (row["probes"], placement["candidates"], report.num(row["placed"]),
+                                           report.num(row["uniform"])) in section
+    hand = placement["hand_placed"]
+    assert "| %d hand-placed | %s |" % (hand["probes"], report.num(hand["error"])) in section
+    digest = (tmp_path / "readme_section.md").read_text()
+    assert "| %s | %s | %s |" % (leak["paths"][0]["name"], report.num(leak["paths"][0]["leak_error"]["without"]),
+                                 report.num(leak["paths"][0]["leak_error"]["with"])) in digest
+    assert "| %d of %d |" % (placement["comparison"][0]["probes"], placement["candidates"]) in digest
+
+
+def test_missing_leak_and_placement_parts_are_said_not_run(tmp_path, no_plots):
+    directory = _results(tmp_path, leave_out=("leak.json",))
+    (directory / "placement.json").write_text(json.dumps(
+        {"part": "placement", "not_run": "placement_vs_uniform.py failed: ImportError: no numpy"}))
+    text = _run(directory)
+    assert "**Not run:** leak.json is missing (tetprobe_bench leak did not write it)" in \
+        _section(text, "## 6. Leak control")
+    assert "**Not run:** placement_vs_uniform.py failed: ImportError: no numpy" in _section(text, "## 7. Probe placement")
+    summary = text[:text.index(SECTIONS[0])]
+    assert "- tetprobe_bench leak: leak.json is missing" in summary
+    assert "- samples/bench/placement_vs_uniform.py: placement_vs_uniform.py failed" in summary
+    digest = (tmp_path / "readme_section.md").read_text()
+    assert "leak_path.png" not in digest and "placement_error.png" not in digest
+
+
+def test_placement_script_says_why_it_did_not_run(tmp_path, monkeypatch):
+    import placement_vs_uniform
+    monkeypatch.setattr(placement_vs_uniform, "measure", lambda: (_ for _ in ()).throw(OSError("no library")))
+    assert placement_vs_uniform.main(["placement_vs_uniform.py", str(tmp_path)]) == 1
+    result = json.loads((tmp_path / "placement.json").read_text())
+    assert result["not_run"] == "placement_vs_uniform.py failed: OSError: no library"
 
 
 def test_peers_that_could_not_run_are_said(tmp_path, no_plots):
