@@ -121,6 +121,16 @@ public:
         return heights;
     }
 
+    // The height (world y) of the first surface of any kind above the point at (x, y, z), or
+    // infinity: where a walkable band above a floor at y ends.
+    double ceiling(double x, double y, double z, double step) const {
+        const float from[3] = {float(x - origin_[0]), float(y - origin_[1]), float(z - origin_[2])};
+        const float up[3] = {0.0f, 1.0f, 0.0f};
+        RayHit hit;
+        if (!caster_.intersect(from, up, float(step), INFINITY, &hit)) return INFINITY;
+        return double(from[1]) + double(hit.distance) + origin_[1];
+    }
+
 private:
     bool faces_up(const RayHit& hit) const {
         const Mesh& mesh = scene_.meshes()[hit.mesh];
@@ -157,8 +167,18 @@ std::vector<float> raw_points(const Grid grids[2], const CandidateRules& rules, 
                 continue;
             }
             const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-            for (double floor : geometry.floors(p[0], p[2], hi[1] + rules.walk_max_height + rules.spacing, 1e-5 * extent))
-                for (double h : band_heights(rules)) points.insert(points.end(), {float(p[0]), float(floor + h), float(p[2])});
+            const double step = 1e-5 * extent;
+            for (double floor : geometry.floors(p[0], p[2], hi[1] + rules.walk_max_height + rules.spacing, step)) {
+                // The band ends below the surface above the floor (a ceiling, a table top) by the
+                // margin, and at the scene's bounds: above a roof half the rays escape, so the
+                // inside test alone would keep such points.
+                const double ceiling = geometry.ceiling(p[0], floor, p[2], step);
+                for (double h : band_heights(rules)) {
+                    const double y = floor + h;
+                    if (y < ceiling && y <= ceiling - rules.margin && y <= hi[1])
+                        points.insert(points.end(), {float(p[0]), float(y), float(p[2])});
+                }
+            }
             if (points.size() / 3 > kMaxPlacementGridPoints) too_many(rules, double(points.size() / 3), lo, hi);
         }
         if (g == 0) *candidate_count = points.size() / 3;

@@ -2,7 +2,8 @@
 // mode takes a grid over the scene's bounds; the walkable mode takes columns of that grid, finds
 // every upward-facing surface along each (up is +y; a floor faces up within 45 degrees, a one-sided
 // surface seen from behind is none), and stands points above each floor across the height band
-// [walk_min_height, walk_max_height], a spacing apart. Kept points are outside geometry
+// [walk_min_height, walk_max_height], a spacing apart, cut off `margin` below the next surface above
+// the floor and at the scene's bounds. Kept points are outside geometry
 // (bake/inside_test.h) and at least `margin` from every surface. The same rules pick held-out points
 // on the grid shifted by half a spacing (the cells' centres), where pruning measures its error.
 #pragma once

@@ -1,6 +1,6 @@
 // Scene file format (JSON object; every key optional unless said, unknown keys are errors):
 //   "meshes": [ { "name": "floor",
-//                 "obj": "floor.obj"                      (path relative to the JSON file), or
+//                 "obj": "floor.obj"                      (path relative to the JSON file, or absolute), or
 //                 "vertices": [[x,y,z], ...] or [x,y,z,...] and "indices": [[a,b,c], ...] or [a,b,c,...],
 //                 "material": {"albedo": [r,g,b], "emission": [r,g,b], "two_sided": bool}, or
 //                 "materials": [ {...}, ... ] with "triangle_materials": [m, ...] (one per triangle) } ],
@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <initializer_list>
 #include <sstream>
@@ -145,7 +146,9 @@ void add_mesh(Scene& scene, const json& value, size_t index, const std::string& 
     if (value.contains("obj")) {
         if (value.contains("vertices") || value.contains("indices"))
             fail_at(where, "has both \"obj\" and inline \"vertices\"/\"indices\"");
-        read_obj(directory_of(file) + text(value["obj"], where + ": obj"), where, vertices, indices);
+        const std::string obj = text(value["obj"], where + ": obj");
+        // An absolute path is used as it is; a relative one starts at the JSON file's folder.
+        read_obj(std::filesystem::path(obj).is_absolute() ? obj : directory_of(file) + obj, where, vertices, indices);
     } else {
         if (!value.contains("vertices") || !value.contains("indices"))
             fail_at(where, "needs \"obj\" or both \"vertices\" and \"indices\"");

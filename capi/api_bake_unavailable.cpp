@@ -102,8 +102,9 @@ TP_API tp_status tp_bake(const tp_scene*, const float*, size_t, size_t, const tp
 }
 
 TP_API tp_status tp_bake_occlusion(const tp_scene*, const float*, size_t, size_t, const tp_bake_options*, uint8_t*,
-                                   size_t, uint32_t*) {
+                                   size_t, uint32_t* out_mixed_lights) {
     TP_API_BEGIN
+    if (out_mixed_lights) *out_mixed_lights = 0;
     return unavailable("tp_bake_occlusion");
     TP_API_END
 }

@@ -130,12 +130,12 @@ TP_API tp_status tp_sh_nonnegative_window_strength(const float sh[27], const tp_
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(sh);
     TP_REQUIRE_NOT_NULL(out_strength);
-    ShEvalOptions settings;
-    if (tp_status s = read_sh_eval_options(options, settings)) return s;
+    ShOrder order;
+    if (tp_status s = read_sh_order(options, order)) return s;  // the window fields are not read
     if (tp_status s = require_finite(sh, 27, "sh")) return s;
     float ordered[27];
     for (int i = 0; i < 27; ++i) ordered[i] = sh[i];
-    sh_apply_order(ordered, settings.order);
+    sh_apply_order(ordered, order);
     *out_strength = float(sh_nonnegative_window_strength(ordered));
     return TP_OK;
     TP_API_END

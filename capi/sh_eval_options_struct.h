@@ -37,10 +37,10 @@ inline tp_sh_eval_options default_sh_eval_options() { return to_tp_sh_eval_optio
 #define TP_SH_OPTION_FIELD(options, field)                                                        \
     (size_t((options)->struct_size) >= offsetof(tp_sh_eval_options, field) + sizeof((options)->field))
 
-// The run time's options from the caller's (NULL = defaults); fields past struct_size keep their
-// defaults. Bad values give TP_ERROR_INVALID_ARGUMENT with a message.
-inline tp_status read_sh_eval_options(const tp_sh_eval_options* options, ShEvalOptions& out) {
-    out = ShEvalOptions{};
+// Only the order from the caller's options (NULL = L2), for functions that read no other field:
+// the window fields are not checked. Bad values give TP_ERROR_INVALID_ARGUMENT with a message.
+inline tp_status read_sh_order(const tp_sh_eval_options* options, ShOrder& out) {
+    out = ShEvalOptions{}.order;
     if (!options) return TP_OK;
     if (!TP_SH_OPTION_FIELD(options, order))
         return fail(TP_ERROR_INVALID_ARGUMENT, "options->struct_size " + std::to_string(options->struct_size) +
@@ -48,7 +48,16 @@ inline tp_status read_sh_eval_options(const tp_sh_eval_options* options, ShEvalO
     if (options->order > TP_SH_ORDER_ZH3)
         return fail(TP_ERROR_INVALID_ARGUMENT, "options->order " + std::to_string(options->order) +
                                                    " is not a TP_SH_ORDER_* value");
-    out.order = ShOrder(options->order);
+    out = ShOrder(options->order);
+    return TP_OK;
+}
+
+// The run time's options from the caller's (NULL = defaults); fields past struct_size keep their
+// defaults. Bad values give TP_ERROR_INVALID_ARGUMENT with a message.
+inline tp_status read_sh_eval_options(const tp_sh_eval_options* options, ShEvalOptions& out) {
+    out = ShEvalOptions{};
+    if (tp_status s = read_sh_order(options, out.order)) return s;
+    if (!options) return TP_OK;
     if (TP_SH_OPTION_FIELD(options, window)) {
         if (options->window > TP_SH_WINDOW_NONNEGATIVE)
             return fail(TP_ERROR_INVALID_ARGUMENT, "options->window " + std::to_string(options->window) +

@@ -52,9 +52,11 @@ void test_runtime_library_refuses_bake_time(void) {
     EXPECT_UNSUPPORTED(tp_bake, tp_bake(NULL, positions, 0, 4, &options, out, 0));
     {
         unsigned char occlusion[16];
+        uint32_t mixed_lights = 7;
         memset(occlusion, 0x5A, sizeof occlusion);
-        EXPECT_UNSUPPORTED(tp_bake_occlusion, tp_bake_occlusion(NULL, positions, 0, 4, &options, occlusion, 0, &id));
-        CHECK(occlusion[0] == 0x5A);
+        EXPECT_UNSUPPORTED(tp_bake_occlusion,
+                           tp_bake_occlusion(NULL, positions, 0, 4, &options, occlusion, 0, &mixed_lights));
+        CHECK(occlusion[0] == 0x5A && mixed_lights == 0);
     }
     {
         tp_placement_options placement;

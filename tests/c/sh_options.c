@@ -432,6 +432,8 @@ void test_sh_eval_options_errors(void) {
         EXPECT_STATUS(tp_sh_min_irradiance(sh, &bad, out, normal), TP_ERROR_INVALID_ARGUMENT);
         if (k < 2 || k > 5) /* the window fields are documented as not read here */
             EXPECT_STATUS(tp_sh_nonnegative_window_strength(sh, &bad, &strength), TP_ERROR_INVALID_ARGUMENT);
+        else
+            EXPECT_OK(tp_sh_nonnegative_window_strength(sh, &bad, &strength));
     }
 
     /* Non-finite SH: the minimum and the non-negative window need finite coefficients. */

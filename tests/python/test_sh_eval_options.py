@@ -183,6 +183,16 @@ def test_bad_arguments():
     options.struct_size = 0
     assert lib.tp_sh_apply_options(coefficients.copy(), ctypes.byref(options)) == Status.INVALID_ARGUMENT
     assert "struct_size" in _native.last_error()
+    # The nonnegative strength reads the order only: bad window fields are not its business.
+    light = sh.directional([0.36, -0.48, 0.8], [1.0, 0.5, 2.0])
+    strength = ctypes.c_float(-1.0)
+    for window, window_strength in ((7, 0.0), (1, -0.5), (1, float("nan"))):
+        options = _native.ShEvalOptions(ctypes.sizeof(_native.ShEvalOptions), 1, window, window_strength)
+        assert lib.tp_sh_nonnegative_window_strength(light, ctypes.byref(options), ctypes.byref(strength)) == 0
+        assert strength.value == sh.nonnegative_window_strength(light, "l1")
+    options = _native.ShEvalOptions(ctypes.sizeof(_native.ShEvalOptions), 3, 0, 0.0)
+    assert lib.tp_sh_nonnegative_window_strength(light, ctypes.byref(options), ctypes.byref(strength)) != 0
+    assert "order" in _native.last_error()
     # A caller built against a struct holding only the order: the rest keep their defaults.
     options = sh.eval_options("l1", "sloan", float("nan"))
     options.struct_size = 8

@@ -16,6 +16,7 @@
 #include <cstring>
 #include <random>
 #include <string>
+#include <utility>
 
 using namespace tetprobe;
 using namespace placement_test;
@@ -147,13 +148,16 @@ TEST_CASE("placement candidates: walkable stands points across a band above ever
     for (int z = 0; z < 8; ++z)
         for (int x = 0; x < 8; ++x) {
             const float px = 0.375f + 0.75f * x, pz = 0.375f + 0.75f * z;
-            std::vector<float> floors;  // from the top down
-            if (px > 2.5f && px < 3.5f && pz > 2.5f && pz < 3.5f) floors.push_back(2.0f);
-            if (px > 4.5f && px < 5.5f && pz > 0.5f && pz < 1.5f) floors.push_back(0.8f);
-            floors.push_back(0.0f);
-            for (float floor : floors)
+            const bool pillar = px > 2.5f && px < 3.5f && pz > 2.5f && pz < 3.5f;
+            const bool table = px > 4.5f && px < 5.5f && pz > 0.5f && pz < 1.5f;
+            std::vector<std::pair<float, float>> floors;  // floor and the surface above it, from the top down
+            if (pillar) floors.push_back({2.0f, 3.0f});
+            if (table) floors.push_back({0.8f, 3.0f});
+            floors.push_back({0.0f, pillar ? 2.0f : table ? 0.8f : 3.0f});
+            for (const auto& [floor, ceiling] : floors)
                 for (float h : {0.375f, 1.125f}) {
                     const float p[3] = {px, floor + h, pz};
+                    if (double(p[1]) > double(ceiling) - rules.margin) continue;  // the band ends below the ceiling
                     ++before_tests;
                     const bool solid = (px > 2.5f && px < 3.5f && pz > 2.5f && pz < 3.5f && p[1] < 2.0f) ||
                                        (px > 4.5f && px < 5.5f && pz > 0.5f && pz < 1.5f && p[1] < 0.8f);
@@ -166,6 +170,58 @@ TEST_CASE("placement candidates: walkable stands points across a band above ever
     REQUIRE(c.positions.size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i) CHECK(c.positions[i] == Approx(expected[i]).margin(1e-5));
     CHECK(expected.size() / 3 > 100);
+}
+
+TEST_CASE("placement candidates: walkable bands end below the ceiling, inside the room", "[placement]") {
+    // A closed 6 x 3 x 6 room with a 2 x 2 crate 2 high: above the crate's top the default band
+    // (0..2 at spacing 1: 0.5 and 1.5 above a floor) would reach 3.5, above the roof.
+    Scene scene;
+    add_box(scene, {0, 0, 0}, {6, 3, 6}, false);
+    add_box(scene, {2, 0, 2}, {4, 2, 4}, true);
+    tp_light lamp = default_c_light();
+    lamp.position[0] = 0.6f, lamp.position[1] = 2.4f, lamp.position[2] = 0.6f;
+    lamp.intensity = 30.0f;
+    scene.add_light(lamp);
+    CandidateRules rules;
+    rules.mode = PlacementMode::walkable;
+    const double ceiling = 3.0 - rules.margin;
+    auto in_room = [&](const float* p) {
+        return p[0] > 0 && p[0] < 6 && p[1] > 0 && double(p[1]) <= ceiling && p[2] > 0 && p[2] < 6;
+    };
+    const Candidates c = find_candidates(scene, rules, 2, ProgressRange{});
+    size_t on_crate = 0;
+    for (size_t i = 0; i < c.positions.size() / 3; ++i) {
+        CHECK(in_room(&c.positions[3 * i]));
+        if (c.positions[3 * i + 1] == 2.5f) ++on_crate;
+    }
+    for (size_t i = 0; i < c.held_out.size() / 3; ++i) CHECK(in_room(&c.held_out[3 * i]));
+    CHECK(on_crate == 4);                        // the crate's top keeps its lower layer
+    CHECK(c.positions.size() / 3 == 4 + 2 * 32);  // and the floor both layers around the crate
+    CHECK(c.grid_points == 4 + 2 * 36);           // the upper layer above the crate is never a candidate
+
+    PlacementSettings settings;
+    settings.rules = rules;
+    settings.rays = 32;
+    settings.threads = 2;
+    settings.error_bound = 0;
+    const Placement placed = place_probes(scene, settings);
+    REQUIRE(placed.positions.size() / 3 >= 4);
+    for (size_t i = 0; i < placed.positions.size() / 3; ++i) CHECK(in_room(&placed.positions[3 * i]));
+}
+
+TEST_CASE("placement candidates: the whole mode stays within the scene's bounds", "[placement]") {
+    // A closed room whose bounds are not a multiple of the spacing: no grid point may leave them.
+    Scene scene;
+    add_box(scene, {0, 0, 0}, {5.3f, 2.9f, 4.1f}, false);
+    CandidateRules rules;
+    rules.margin = 0;
+    const Candidates c = find_candidates(scene, rules, 2, ProgressRange{});
+    CHECK(c.positions.size() / 3 == 5 * 2 * 4);
+    for (const std::vector<float>* points : {&c.positions, &c.held_out})
+        for (size_t i = 0; i < points->size() / 3; ++i) {
+            const float* p = &(*points)[3 * i];
+            CHECK((p[0] >= 0 && p[0] <= 5.3f && p[1] >= 0 && p[1] <= 2.9f && p[2] >= 0 && p[2] <= 4.1f));
+        }
 }
 
 TEST_CASE("placement: the same bytes for a seed on one thread and two", "[placement]") {

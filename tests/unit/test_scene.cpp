@@ -187,6 +187,20 @@ TEST_CASE("scene file: inline meshes, OBJ meshes, lights, sky, probes and grids"
     CHECK(scene.probes()[3 * 4 + 2] == 0.5f);  // x varies fastest, then y, then z
 }
 
+TEST_CASE("scene file: an absolute OBJ path is used as it is", "[scene]") {
+    const std::string obj = std::string(TP_SOURCE_DIR) + "/samples/scenes/two_rooms.obj";
+    REQUIRE(fs::path(obj).is_absolute());
+    TempDir dir;
+    fs::copy_file(obj, dir.path / "copy.obj");
+    const Scene absolute = load_scene_file(dir.write("absolute.json", R"({"meshes": [{"obj": ")" + obj + R"("}]})"));
+    const Scene relative = load_scene_file(dir.write("relative.json", R"({"meshes": [{"obj": "copy.obj"}]})"));
+    REQUIRE(absolute.meshes().size() == 1);
+    REQUIRE(relative.meshes().size() == 1);
+    CHECK(absolute.meshes()[0].triangle_count() > 0);
+    CHECK(absolute.meshes()[0].vertices == relative.meshes()[0].vertices);
+    CHECK(absolute.meshes()[0].indices == relative.meshes()[0].indices);
+}
+
 TEST_CASE("scene file: errors name the file, the mesh or light and the index", "[scene]") {
     TempDir dir;
     auto expect = [&](const std::string& json, tetprobe::Status status, std::initializer_list<const char*> words) {
