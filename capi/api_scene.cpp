@@ -20,18 +20,8 @@ using tetprobe::fail;
 namespace {
 
 tp_status read_positions(const float* positions, size_t stride, size_t count, std::vector<float>& out) {
-    if (count > 0 && !positions) return fail(TP_ERROR_INVALID_ARGUMENT, "positions is NULL");
-    stride = tetprobe::resolve_stride(stride, 3 * sizeof(float), "position_stride");
     if (count == 0) return fail(TP_ERROR_DEGENERATE, "no probe positions (count is 0)");
-    out.resize(3 * count);
-    for (size_t i = 0; i < count; ++i) {
-        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const char*>(positions) + i * stride);
-        for (int a = 0; a < 3; ++a) {
-            if (!std::isfinite(p[a]))
-                return fail(TP_ERROR_INVALID_ARGUMENT, "position " + std::to_string(i) + " is not finite");
-            out[3 * i + a] = p[a];
-        }
-    }
+    tetprobe::copy_finite_positions(positions, stride, count, out);
     return TP_OK;
 }
 

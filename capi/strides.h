@@ -6,7 +6,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cmath>
 #include <string>
+#include <vector>
 
 namespace tetprobe {
 
@@ -24,6 +26,23 @@ inline size_t resolve_stride(size_t stride, size_t element, const char* name) {
 inline void require_addressable(size_t count, size_t stride, size_t record_bytes, const char* what) {
     if (count > 0 && (count - 1) > (SIZE_MAX - record_bytes) / stride)
         throw Error(Status::invalid_argument, std::string(what) + ": count times stride overflows");
+}
+
+// Copies count strided positions (3 floats each) into out; throws Error(Status::invalid_argument) for a
+// NULL buffer, a bad stride, or a non-finite coordinate (naming the position).
+inline void copy_finite_positions(const float* positions, size_t stride, size_t count, std::vector<float>& out) {
+    if (count > 0 && !positions) throw Error(Status::invalid_argument, "positions is NULL");
+    stride = resolve_stride(stride, 3 * sizeof(float), "position_stride");
+    require_addressable(count, stride, 3 * sizeof(float), "positions");
+    out.resize(3 * count);
+    for (size_t i = 0; i < count; ++i) {
+        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const char*>(positions) + i * stride);
+        for (int a = 0; a < 3; ++a) {
+            if (!std::isfinite(p[a]))
+                throw Error(Status::invalid_argument, "position " + std::to_string(i) + " is not finite");
+            out[3 * i + a] = p[a];
+        }
+    }
 }
 
 }  // namespace tetprobe
