@@ -1,5 +1,7 @@
 #include "core/half.h"
 
+#include "core/float_bits.h"
+
 #include <cstring>
 
 #if defined(__x86_64__)
@@ -10,18 +12,6 @@
 namespace tetprobe {
 
 namespace {
-
-uint32_t float_bits(float f) {
-    uint32_t u;
-    std::memcpy(&u, &f, sizeof u);
-    return u;
-}
-
-float bits_float(uint32_t u) {
-    float f;
-    std::memcpy(&f, &u, sizeof f);
-    return f;
-}
 
 // Drops the low `shift` bits of value, rounding to nearest with ties to even.
 uint32_t shift_round_even(uint32_t value, uint32_t shift) {

@@ -1,5 +1,6 @@
 #include "core/sh_window.h"
 
+#include "core/float_bits.h"
 #include "core/sh.h"
 #include "core/sh_min_irradiance.h"
 
@@ -24,18 +25,6 @@ bool windowed_nonnegative(const float ordered_sh[27], double strength) {
         if (!(sh_channel_min_irradiance(channel).lower_bound >= sh_irradiance_rounding_bound(channel))) return false;
     }
     return true;
-}
-
-uint32_t float_bits(float value) {
-    uint32_t bits;
-    std::memcpy(&bits, &value, sizeof bits);
-    return bits;
-}
-
-float bits_float(uint32_t bits) {
-    float value;
-    std::memcpy(&value, &bits, sizeof value);
-    return value;
 }
 
 }  // namespace
