@@ -116,7 +116,9 @@ public:
         RayHit hit;
         while (heights.size() < kMaxFloorsPerColumn && caster_.intersect(from, down, t, INFINITY, &hit)) {
             if (faces_up(hit)) heights.push_back(double(from[1]) - double(hit.distance) + origin_[1]);
-            t = float(double(hit.distance) + step);
+            // Past the surface just hit, by at least one float step: far above a small scene the
+            // step alone can round away, and the same triangle would be hit again forever.
+            t = std::max(float(double(hit.distance) + step), std::nextafter(hit.distance, INFINITY));
         }
         return heights;
     }

@@ -83,8 +83,11 @@ size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* po
         for (size_t j = 0; j < count; ++j) {
             const size_t i = group + j;
             if (hints) std::memcpy(strided(hints, i, hint_stride), &located[j].cell, sizeof located[j].cell);
-            if (located[j].status != Status::ok && first_outside == end) first_outside = i;
-            else if (s.leak_offsets) weigh_by_visibility(s, located[j]);
+            if (located[j].status != Status::ok) {
+                if (first_outside == end) first_outside = i;
+            } else if (s.leak_offsets) {
+                weigh_by_visibility(s, located[j]);
+            }
         }
         for (size_t j = 0; j < count; ++j) answer(group + j, located[j]);
     }

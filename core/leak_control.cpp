@@ -53,7 +53,7 @@ void mark_blocked_cells(Store::Impl& s) {
 }
 
 void weigh_by_visibility(const Store::Impl& s, Location& loc) {
-    if (!s.leak_cells.get()[loc.cell]) return;
+    if (loc.cell < 0 || !s.leak_cells.get()[loc.cell]) return;
     // Per slot: the weight of its blocked partners in the cell, and their ramps (oriented away from
     // the slot's probe) summed with those weights.
     double behind[4] = {0, 0, 0, 0}, ramp_start[4] = {0, 0, 0, 0}, ramp_end[4] = {0, 0, 0, 0};

@@ -209,6 +209,25 @@ TEST_CASE("placement candidates: walkable bands end below the ceiling, inside th
     for (size_t i = 0; i < placed.positions.size() / 3; ++i) CHECK(in_room(&placed.positions[3 * i]));
 }
 
+TEST_CASE("placement candidates: a walkable band far taller than the scene still ends", "[placement]") {
+    // The downward ray starts above the band's top: 1e4 above a 1 m room, the 1e-5 step past each hit
+    // rounds away in float, and the room's ceiling (a face turned down, never a floor) was hit again
+    // forever. Every candidate must still lie inside the room.
+    Scene scene;
+    add_box(scene, {0, 0, 0}, {1, 1, 1}, false);
+    CandidateRules rules;
+    rules.mode = PlacementMode::walkable;
+    rules.spacing = 0.5;
+    rules.margin = 0.01;
+    rules.walk_max_height = 1e4;
+    const Candidates c = find_candidates(scene, rules, 1, ProgressRange{});
+    CHECK(c.positions.size() / 3 == 8);  // two layers (0.25 and 0.75 above the floor) in each of 2 x 2 columns
+    for (size_t i = 0; i < c.positions.size() / 3; ++i) {
+        const float* p = &c.positions[3 * i];
+        CHECK((p[0] > 0 && p[0] < 1 && p[1] > 0 && p[1] < 1 && p[2] > 0 && p[2] < 1));
+    }
+}
+
 TEST_CASE("placement candidates: the whole mode stays within the scene's bounds", "[placement]") {
     // A closed room whose bounds are not a multiple of the spacing: no grid point may leave them.
     Scene scene;
