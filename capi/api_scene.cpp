@@ -1,5 +1,6 @@
 // Scenes, the effects plan and the lighting bake (full library only).
 #include "boundary.h"
+#include "grown_structs.h"
 #include "scene_handle.h"
 #include "strides.h"
 
@@ -150,8 +151,7 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     TP_REQUIRE_NOT_NULL(plan);
     // The plan grows at its end (inside_probes came later): an older caller's struct gets only its fields.
     constexpr size_t kFirstPlanSize = offsetof(tp_effects_plan, inside_probes);
-    const size_t plan_size = plan->struct_size;
-    if (plan_size < kFirstPlanSize)
+    if (plan->struct_size < kFirstPlanSize)
         return fail(TP_ERROR_INVALID_ARGUMENT, "plan->struct_size is not set to sizeof(tp_effects_plan)");
     if (text && text_capacity > 0) text[0] = '\0';
     tetprobe::BakeSettings settings;
@@ -177,8 +177,7 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     out.shadow_casters = derived.shadow_casters;
     out.shadow_caster_candidates = derived.shadow_caster_candidates;
     out.inside_probes = uint32_t(derived.inside_probes.size());
-    out.struct_size = uint32_t(std::min(plan_size, sizeof(tp_effects_plan)));
-    std::memcpy(plan, &out, out.struct_size);
+    tetprobe::copy_fitting_fields(plan, out, plan->struct_size);
 
     if (text) {
         const std::string summary = derived.summary();

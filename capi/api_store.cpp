@@ -3,6 +3,7 @@
 #include "strides.h"
 #include "core/file_io.h"
 #include "core/store.h"
+#include "grown_structs.h"
 #include "store_handle.h"
 
 #include <cmath>
@@ -73,12 +74,27 @@ void to_input_probes(const Store& store, const Location& loc, uint32_t probes[4]
     }
 }
 
-// Writes the fields of T that fit in struct_size bytes from a full local copy.
-template <class T>
-void copy_fitting_fields(T* out, const T& full, uint32_t struct_size) {
-    const size_t n = struct_size < sizeof(T) ? struct_size : sizeof(T);
-    std::memcpy(reinterpret_cast<unsigned char*>(out) + sizeof(uint32_t),
-                reinterpret_cast<const unsigned char*>(&full) + sizeof(uint32_t), n - sizeof(uint32_t));
+// Checks and resolves a batch query's arguments and runs it; with_occlusion: out_occlusion is required
+// (tp_store_interpolate_occlusion_batch), else it is null.
+tp_status interpolate_batch(const tp_store* store, size_t count, const float* positions, size_t position_stride,
+                            int32_t* hints, size_t hint_stride, float* out_sh, size_t sh_stride, bool with_occlusion,
+                            float* out_occlusion, size_t occlusion_stride, const tp_batch_options* options) {
+    TP_REQUIRE_NOT_NULL(store);
+    const BatchSettings settings = batch_settings(options);
+    if (count == 0) return TP_OK;
+    TP_REQUIRE_NOT_NULL(positions);
+    TP_REQUIRE_NOT_NULL(out_sh);
+    if (with_occlusion) TP_REQUIRE_NOT_NULL(out_occlusion);
+    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
+    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
+    sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
+    if (with_occlusion) occlusion_stride = resolve_stride(occlusion_stride, 4 * sizeof(float), "occlusion_stride");
+    require_finite_positions(positions, count, position_stride);
+    size_t first_outside = count;
+    const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
+                                                            out_sh, sh_stride, settings, &first_outside,
+                                                            out_occlusion, occlusion_stride);
+    return report_outside(status, first_outside);
 }
 
 }  // namespace
@@ -227,22 +243,8 @@ TP_API tp_status tp_store_interpolate_occlusion_batch(const tp_store* store, siz
                                                       float* out_sh, size_t sh_stride, float* out_occlusion,
                                                       size_t occlusion_stride, const tp_batch_options* options) {
     TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(store);
-    const BatchSettings settings = batch_settings(options);
-    if (count == 0) return TP_OK;
-    TP_REQUIRE_NOT_NULL(positions);
-    TP_REQUIRE_NOT_NULL(out_sh);
-    TP_REQUIRE_NOT_NULL(out_occlusion);
-    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
-    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
-    sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
-    occlusion_stride = resolve_stride(occlusion_stride, 4 * sizeof(float), "occlusion_stride");
-    require_finite_positions(positions, count, position_stride);
-    size_t first_outside = count;
-    const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
-                                                            out_sh, sh_stride, settings, &first_outside,
-                                                            out_occlusion, occlusion_stride);
-    return report_outside(status, first_outside);
+    return interpolate_batch(store, count, positions, position_stride, hints, hint_stride, out_sh, sh_stride, true,
+                             out_occlusion, occlusion_stride, options);
     TP_API_END
 }
 
@@ -258,19 +260,8 @@ TP_API tp_status tp_store_interpolate_batch(const tp_store* store, size_t count,
                                             size_t position_stride, int32_t* hints, size_t hint_stride,
                                             float* out_sh, size_t sh_stride, const tp_batch_options* options) {
     TP_API_BEGIN
-    TP_REQUIRE_NOT_NULL(store);
-    const BatchSettings settings = batch_settings(options);
-    if (count == 0) return TP_OK;
-    TP_REQUIRE_NOT_NULL(positions);
-    TP_REQUIRE_NOT_NULL(out_sh);
-    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
-    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
-    sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
-    require_finite_positions(positions, count, position_stride);
-    size_t first_outside = count;
-    const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
-                                                            out_sh, sh_stride, settings, &first_outside);
-    return report_outside(status, first_outside);
+    return interpolate_batch(store, count, positions, position_stride, hints, hint_stride, out_sh, sh_stride, false,
+                             nullptr, 0, options);
     TP_API_END
 }
 

@@ -11,11 +11,11 @@
 #include "bench_timing.h"
 #include "blob_sh.h"
 #include "cgal_peer.h"
+#include "coherent_timing.h"
 #include "part_output.h"
 #include "query_sets.h"
 
 #include "capi/tetprobe.h"
-#include "core/half.h"
 
 #include <cmath>
 #include <cstdio>
@@ -139,53 +139,13 @@ Row tetprobe_points(const tp_store* store, const std::vector<float>& points, int
 
 // tp_store_interpolate on the paths and the blend-only floor on the same probes and weights.
 void interpolate_and_floor(const tp_store* store, const ObjectPaths& paths, json* out, float* sink) {
-    std::vector<int32_t> start(paths.objects, -1);
-    for (size_t o = 0; o < paths.objects; ++o) locate(store, paths.at(o, 0), &start[o]);
-    const size_t n = paths.timed_queries();
-    (*out)["interpolate_coherent_ns"] = ns(median_seconds([&] {
-                                               float sh[27], acc = 0;
-                                               const Clock::time_point t0 = Clock::now();
-                                               for (size_t o = 0; o < paths.objects; ++o) {
-                                                   int32_t hint = start[o];
-                                                   for (size_t f = 1; f < paths.frames; ++f) {
-                                                       tp_store_interpolate(store, paths.at(o, f), &hint, sh);
-                                                       acc += sh[0];
-                                                   }
-                                               }
-                                               const double s = seconds_since(t0);
-                                               *sink += acc;
-                                               return s;
-                                           }),
-                                           n);
+    (*out)["interpolate_coherent_ns"] = time_coherent_single(store, paths, sink);
     BlobSh blob;
     if (!read_blob_sh(store, &blob)) {
         (*out)["floor_ns"] = nullptr;
         return;
     }
-    std::vector<const uint16_t*> sh;
-    std::vector<float> weights;
-    for (size_t o = 0; o < paths.objects; ++o) {
-        int32_t hint = start[o];
-        for (size_t f = 1; f < paths.frames; ++f) {
-            const tp_location loc = locate(store, paths.at(o, f), &hint);
-            for (int k = 0; k < 4; ++k) {
-                sh.push_back(blob.sh + blob.stride * blob.input_remap[loc.probes[k]]);
-                weights.push_back(loc.weights[k]);
-            }
-        }
-    }
-    (*out)["floor_ns"] = ns(median_seconds([&] {
-                                float result[27], acc = 0;
-                                const Clock::time_point t0 = Clock::now();
-                                for (size_t i = 0; i < n; ++i) {
-                                    tetprobe::blend_sh_halves(&sh[4 * i], &weights[4 * i], result);
-                                    acc += result[0];
-                                }
-                                const double s = seconds_since(t0);
-                                *sink += acc;
-                                return s;
-                            }),
-                            n);
+    (*out)["floor_ns"] = time_blend_floor(store, blob, paths, sink);
 }
 
 json run_size(size_t n, const Workload& w, const PartOptions& options, float* sink) {

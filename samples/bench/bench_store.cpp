@@ -9,6 +9,7 @@
 
 #include "bench_timing.h"
 #include "blob_sh.h"
+#include "coherent_timing.h"
 #include "cgal_peer.h"
 #include "plain_walk.h"
 #include "query_sets.h"
@@ -83,13 +84,6 @@ tp_location locate(const tp_store* store, const float* p, int32_t* hint) {
     return loc;
 }
 
-// Each object's cell at frame 0 (untimed): the first hint of the timed frames.
-std::vector<int32_t> first_hints(const tp_store* store, const ObjectPaths& paths) {
-    std::vector<int32_t> hints(paths.objects, -1);
-    for (size_t o = 0; o < paths.objects; ++o) locate(store, paths.at(o, 0), &hints[o]);
-    return hints;
-}
-
 std::string load_average() {
     std::ifstream in("/proc/loadavg");
     std::string one;
@@ -130,26 +124,6 @@ double two_thread_ceiling() {
 double ns_per_query(double seconds, size_t queries) { return 1e9 * seconds / double(queries); }
 
 // ---- tetprobe through the C ABI
-
-// Single queries, object by object, each carrying its own hint from the last frame.
-double time_coherent_single(const tp_store* store, const ObjectPaths& paths, float* sink) {
-    const std::vector<int32_t> start = first_hints(store, paths);
-    return ns_per_query(median_seconds([&] {
-                            float out[27], acc = 0;
-                            const Clock::time_point t0 = Clock::now();
-                            for (size_t o = 0; o < paths.objects; ++o) {
-                                int32_t hint = start[o];
-                                for (size_t f = 1; f < paths.frames; ++f) {
-                                    tp_store_interpolate(store, paths.at(o, f), &hint, out);
-                                    acc += out[0];
-                                }
-                            }
-                            const double s = seconds_since(t0);
-                            *sink += acc;
-                            return s;
-                        }),
-                        paths.timed_queries());
-}
 
 // Single queries over points, hint carried from the previous point or none (cold).
 double time_points(const tp_store* store, const std::vector<float>& points, bool carry_hint, float* sink) {
@@ -296,39 +270,6 @@ WalkStats walk_stats_paths(const tp_store* store, const ObjectPaths& paths) {
 }
 
 // ---- the floor and the peers
-
-// The blend-only floor: the same 4 x 27 half -> float blend (core/half.h) of the same probes with the
-// same weights as tetprobe's coherent queries (found first, untimed, by tp_store_locate), no search.
-double time_blend_floor(const tp_store* store, const BlobSh& blob, const ObjectPaths& paths, float* sink) {
-    const std::vector<int32_t> start = first_hints(store, paths);
-    std::vector<const uint16_t*> sh;
-    std::vector<float> weights;
-    sh.reserve(4 * paths.timed_queries());
-    weights.reserve(4 * paths.timed_queries());
-    for (size_t o = 0; o < paths.objects; ++o) {
-        int32_t hint = start[o];
-        for (size_t f = 1; f < paths.frames; ++f) {
-            const tp_location loc = locate(store, paths.at(o, f), &hint);
-            for (int k = 0; k < 4; ++k) {
-                sh.push_back(blob.sh + blob.stride * blob.input_remap[loc.probes[k]]);
-                weights.push_back(loc.weights[k]);
-            }
-        }
-    }
-    const size_t n = paths.timed_queries();
-    return ns_per_query(median_seconds([&] {
-                            float out[27], acc = 0;
-                            const Clock::time_point t0 = Clock::now();
-                            for (size_t i = 0; i < n; ++i) {
-                                tetprobe::blend_sh_halves(&sh[4 * i], &weights[4 * i], out);
-                                acc += out[0];
-                            }
-                            const double s = seconds_since(t0);
-                            *sink += acc;
-                            return s;
-                        }),
-                        n);
-}
 
 // TetGen's own Delaunay call on the same points ("Qz": quiet, zero-based), for comparison with a build.
 double time_tetgen(const std::vector<float>& positions) {
