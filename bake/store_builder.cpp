@@ -13,6 +13,8 @@
 #include "bake/set_dimension.h"
 #include "bake/start_grid.h"
 #include "core/error.h"
+#include "core/octahedral_normal.h"
+#include "core/position_quantization.h"
 #include "core/store_format.h"
 
 #include <Eigen/Geometry>
@@ -42,6 +44,10 @@ void check_settings(const BuildSettings& settings) {
     }
     if (!(settings.flat_tolerance >= 0 && settings.flat_tolerance <= 0.1)) {
         throw Error(Status::invalid_argument, "flat_tolerance must be in [0, 0.1]");
+    }
+    if (settings.sh_encoding >= kShEncodingCount) {
+        throw Error(Status::invalid_argument, "sh_encoding " + std::to_string(settings.sh_encoding) +
+                                                  " is unknown (0 half, 1 unorm8, 2 half_l1, 3 unorm8_l1)");
     }
     if (settings.occlusion && (settings.occlusion_lights < 1 || settings.occlusion_lights > kOcclusionChannels)) {
         throw Error(Status::invalid_argument, "occlusion_lights is " + std::to_string(settings.occlusion_lights) +
@@ -256,6 +262,14 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         hi = hi.cwiseMax(local[i]);
     }
     const double diagonal = (hi - lo).norm();
+    // Quantised positions first: merging, dimension, triangulation and every later stage see the
+    // positions the blob stores. lo and hi are floats, and the extreme probes keep them exactly.
+    float box_lo[3], box_hi[3];
+    for (int a = 0; a < 3; ++a) box_lo[a] = float(lo[a]), box_hi[a] = float(hi[a]);
+    auto quantized = [&](double p, int a) { return double(quantize_position(float(p), box_lo[a], box_hi[a])); };
+    if (settings.quantize_positions)
+        for (size_t i = 0; i < count; ++i)
+            for (int a = 0; a < 3; ++a) local[i][a] = quantized(local[i][a], a);
     // The canonical order: along a space-filling curve over the bounds, ties by coordinates.
     const std::vector<uint32_t> canonical = curve_order(local, lo, hi);
     std::vector<uint32_t> rank(count);
@@ -286,7 +300,8 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
                 on_set = shape.centre + direction * ((local[i][along] - shape.centre[along]) / direction[along]);
                 on_set[along] = local[i][along];
             }
-            for (int a = 0; a < 3; ++a) local[i][a] = double(float(on_set[a]));
+            for (int a = 0; a < 3; ++a)
+                local[i][a] = settings.quantize_positions ? quantized(on_set[a], a) : double(float(on_set[a]));
         }
     }
 
@@ -325,8 +340,10 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     report_progress(settings, 0.7f, "storing");
     StoreData data;
     data.flags = ((settings.flags & TP_BUILD_NO_EXTRAPOLATION) ? kFlagNoExtrapolation : 0u) |
-                 ((settings.flags & TP_BUILD_INDEX32) ? kFlagIndex32 : 0u) |
-                 ((settings.flags & TP_BUILD_COMPACT) ? kFlagCompact : 0u);
+                 ((settings.flags & TP_BUILD_INDEX32) ? kFlagIndex32 : 0u);
+    data.layout = (settings.flags & TP_BUILD_COMPACT) ? kLayoutCompact : kLayoutFast;
+    data.sh_encoding = settings.sh_encoding;
+    data.position_encoding = settings.quantize_positions ? kPositionsUnorm16 : kPositionsFloat32;
     data.dimension = shape.dimension;
     data.axis = shape.dimension == 2 ? shape.dropped_axis() : shape.dimension == 1 ? shape.line_axis() : 0u;
     for (int a = 0; a < 3; ++a) data.origin[a] = origin[a];
@@ -335,10 +352,15 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     data.positions.resize(probes * 3);
     data.normals.resize(probes * 3);
     for (size_t j = 0; j < probes; ++j) {
-        for (int a = 0; a < 3; ++a) {
-            data.positions[j * 3 + size_t(a)] = float(points[j][a]);
-            data.normals[j * 3 + size_t(a)] = float(hull.vertex_normals[j][a]);
-        }
+        for (int a = 0; a < 3; ++a) data.positions[j * 3 + size_t(a)] = float(points[j][a]);
+        // The outer cells' normals as the blob stores them (octahedral with quantised positions); no
+        // outer cells, no normals.
+        const Eigen::Vector3d& n = hull.vertex_normals[j];
+        if (!extrapolate || n == Eigen::Vector3d::Zero()) continue;
+        if (settings.quantize_positions)
+            quantize_normal(n.data(), &data.normals[j * 3]);
+        else
+            for (int a = 0; a < 3; ++a) data.normals[j * 3 + size_t(a)] = float(n[a]);
     }
     // A stored probe's SH is the mean of every input probe merged into it.
     std::vector<double> sh_sum(probes * 27, 0.0);
@@ -367,11 +389,12 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         std::copy_n(outer.vertices[c].begin(), 4, &data.cell_vertices[at]);
         std::copy_n(outer.neighbours[c].begin(), 4, &data.cell_neighbours[at]);
     }
+    // Bounds: the quantisation box, or the stored positions' own.
     for (int a = 0; a < 3; ++a) {
-        data.bounds_min[a] = data.positions[size_t(a)];
-        data.bounds_max[a] = data.positions[size_t(a)];
+        data.bounds_min[a] = settings.quantize_positions ? box_lo[a] : data.positions[size_t(a)];
+        data.bounds_max[a] = settings.quantize_positions ? box_hi[a] : data.positions[size_t(a)];
     }
-    for (size_t j = 0; j < probes; ++j) {
+    for (size_t j = 0; j < probes && !settings.quantize_positions; ++j) {
         for (int a = 0; a < 3; ++a) {
             data.bounds_min[a] = std::min(data.bounds_min[a], data.positions[j * 3 + size_t(a)]);
             data.bounds_max[a] = std::max(data.bounds_max[a], data.positions[j * 3 + size_t(a)]);

@@ -1,4 +1,5 @@
-// Builds a store's arrays from probe positions and SH: input screening, merging of duplicates,
+// Builds a store's arrays from probe positions and SH: input screening, optional quantisation of the
+// positions (first, so that everything after works on what the blob stores), merging of duplicates,
 // dimension detection (point, line, flat, general), Delaunay (TetGen) on the probes in a canonical
 // order, exact orientation of the cells, hull and outer cells, cell ordering and the cold-start grid.
 // The result depends on the probe set, not on the order it was given in, except for which probe of
@@ -18,6 +19,10 @@ struct BuildSettings {
     uint32_t flags = 0;              // TP_BUILD_* (the same bits as the store's kFlag*)
     double merge_tolerance = kDefaultMergeTolerance;  // fraction of the bounding-box diagonal
     double flat_tolerance = kDefaultFlatTolerance;    // fraction of the bounding-box diagonal
+    ShEncoding sh_encoding = kShHalf;
+    // 16 bits per axis over the probes' local bounds (store_format.h); probes that quantise to the same
+    // point merge, and the cells are Delaunay for the quantised positions.
+    bool quantize_positions = false;
     tp_progress_fn progress = nullptr;
     void* progress_user = nullptr;
     // Optional scene data. occlusion: 4 bytes per input probe at occlusion_stride bytes (channels at

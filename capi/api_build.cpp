@@ -44,6 +44,14 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
         settings.occlusion_lights = options->occlusion_lights;
     }
     if (TP_OPTION_FIELD(options, scene) && options->scene) settings.scene = &options->scene->scene;
+    if (TP_OPTION_FIELD(options, sh_encoding)) {
+        if (options->sh_encoding >= tetprobe::kShEncodingCount)
+            throw tetprobe::Error(tetprobe::Status::invalid_argument,
+                                  "options->sh_encoding " + std::to_string(options->sh_encoding) +
+                                      " is not a TP_SH_ENCODING_* value");
+        settings.sh_encoding = tetprobe::ShEncoding(options->sh_encoding);
+    }
+    if (TP_OPTION_FIELD(options, quantize_positions)) settings.quantize_positions = options->quantize_positions != 0;
     return settings;
 }
 

@@ -2,6 +2,7 @@
 #include "boundary.h"
 #include "strides.h"
 #include "core/file_io.h"
+#include "core/position_quantization.h"
 #include "core/store.h"
 #include "grown_structs.h"
 #include "store_handle.h"
@@ -183,7 +184,7 @@ TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info) {
     full.outer_cells = h.cell_count - h.inner_cell_count;
     full.index_bits = (h.flags & kFlagIndex32) ? 32 : 16;
     // The same bits as TP_BUILD_* (boundary.h); the scene-data bits are reported by their own fields.
-    full.flags = h.flags & (kFlagNoExtrapolation | kFlagIndex32 | kFlagCompact);
+    full.flags = (h.flags & (kFlagNoExtrapolation | kFlagIndex32)) | (h.layout == kLayoutCompact ? TP_BUILD_COMPACT : 0u);
     for (int k = 0; k < 3; ++k) {
         full.grid[k] = h.grid[k];
         full.origin[k] = h.origin[k];
@@ -193,6 +194,29 @@ TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info) {
     full.bytes = s.blob_size();
     full.occlusion_lights = h.occlusion_lights;
     full.leak_edges = h.leak_edge_count;
+    full.layout = h.layout;
+    full.sh_encoding = h.sh_encoding;
+    full.quantized_positions = h.position_encoding == kPositionsUnorm16;
+    full.hull_probes = h.hull_probe_count;
+    if (full.quantized_positions && info->struct_size >= offsetof(tp_store_info, position_step) + sizeof full.position_step)
+        for (int k = 0; k < 3; ++k) full.position_step[k] = position_max_gap(h.bounds_min[k], h.bounds_max[k]);
+    SectionEntry table[kSectionCount];
+    std::memcpy(table, s.blob_data() + sizeof(StoreHeader), sizeof table);
+    static_assert(kSectionCount + 2 == TP_STORE_SECTION_COUNT && TP_STORE_SECTION_POSITIONS == kSectionPositions + 1 &&
+                      TP_STORE_SECTION_NORMALS == kSectionNormals + 1 && TP_STORE_SECTION_SH == kSectionSh + 1 &&
+                      TP_STORE_SECTION_PROBE_SOURCE == kSectionProbeSource + 1 &&
+                      TP_STORE_SECTION_INPUT_REMAP == kSectionInputRemap + 1 && TP_STORE_SECTION_CELLS == kSectionCells + 1 &&
+                      TP_STORE_SECTION_GRID == kSectionGrid + 1 && TP_STORE_SECTION_OCCLUSION == kSectionOcclusion + 1 &&
+                      TP_STORE_SECTION_LEAK_OFFSETS == kSectionLeakOffsets + 1 &&
+                      TP_STORE_SECTION_LEAK_EDGES == kSectionLeakEdges + 1,
+                  "tp_store_info.section_bytes follows the blob's section table, after the header");
+    uint64_t parts = kHeaderSize;
+    full.section_bytes[TP_STORE_SECTION_HEADER] = kHeaderSize;
+    for (uint32_t k = 0; k < kSectionCount; ++k) {
+        full.section_bytes[TP_STORE_SECTION_POSITIONS + k] = table[k].size;
+        parts += table[k].size;
+    }
+    full.section_bytes[TP_STORE_SECTION_PADDING] = s.blob_size() - parts;
     copy_fitting_fields(info, full, info->struct_size);
     return TP_OK;
     TP_API_END

@@ -50,7 +50,7 @@ extern "C" {
 #endif
 
 #define TP_VERSION_MAJOR 0
-#define TP_VERSION_MINOR 6
+#define TP_VERSION_MINOR 7
 #define TP_VERSION_PATCH 0
 /** Version as one number, (major << 16) | (minor << 8) | patch; compare with tp_version(). */
 #define TP_VERSION ((TP_VERSION_MAJOR << 16) | (TP_VERSION_MINOR << 8) | TP_VERSION_PATCH)
@@ -100,6 +100,17 @@ typedef struct tp_store tp_store;
     padded). Answers are the same as the default fast layout's: the same cell, weights within 1e-6. */
 #define TP_BUILD_COMPACT 4u
 
+/** How the SH coefficients are stored (tp_build_options.sh_encoding); queries decode them as they blend.
+    HALF: 27 IEEE halves (54 bytes a probe). UNORM8: L0 of each channel as a half, the other 8 coefficients
+    as their ratio to it in 8 bits over the range a non-negative radiance can reach (30 bytes): for
+    radiance >= 0 each coefficient is within c0 * (step / 2 + max / 1024) of its value (step about
+    0.014 to 0.015, max sqrt(3) in band 1, sqrt(5) at most in band 2; docs/store_format.md). The L1
+    variants drop band 2 (24 and 15 bytes): queries and tp_store_probe_sh return zeros there. */
+#define TP_SH_ENCODING_HALF 0u
+#define TP_SH_ENCODING_UNORM8 1u
+#define TP_SH_ENCODING_HALF_L1 2u
+#define TP_SH_ENCODING_UNORM8_L1 3u
+
 typedef struct tp_build_options {
     uint32_t struct_size;
     uint32_t flags;              /* TP_BUILD_* */
@@ -120,6 +131,14 @@ typedef struct tp_build_options {
         between them hits the scene) are stored, and queries weigh down the probe behind the wall (see
         tp_store_interpolate). NULL = none. Bake-time library only. */
     const struct tp_scene* scene;
+    /** Format 5: TP_SH_ENCODING_* (default HALF). */
+    uint32_t sh_encoding;
+    /** Non-zero: positions in 16 bits per axis over the probes' bounds (6 bytes a probe in place of 12).
+        The positions are quantised before anything else, so the cells are exactly Delaunay for the stored
+        positions and a query at a stored probe weighs it exactly 1; a stored probe lies within half a
+        step (tp_store_info.position_step) of its input on each axis. Probes that quantise to the same
+        point are merged (tp_store_info.merged_probes). */
+    uint32_t quantize_positions;
 } tp_build_options;
 
 /** Fills defaults and struct_size. */
@@ -150,6 +169,29 @@ TP_API tp_status tp_store_blob(const tp_store* store, const void** out_data, siz
 /** Releases a store (NULL is allowed). */
 TP_API tp_status tp_store_release(tp_store* store);
 
+/** How a store keeps its cells (tp_store_info.layout). FAST: vertices and neighbours per cell; COMPACT:
+    vertices only (TP_BUILD_COMPACT); REBUILT: no cells, rebuilt from the positions when loaded
+    (reserved: this library refuses such a blob with TP_ERROR_UNSUPPORTED). */
+#define TP_LAYOUT_FAST 0u
+#define TP_LAYOUT_COMPACT 1u
+#define TP_LAYOUT_REBUILT 2u
+
+/** The parts of a blob (indices of tp_store_info.section_bytes): the header with its section table,
+    each section, and the alignment padding between them; together they make tp_store_info.bytes. */
+#define TP_STORE_SECTION_HEADER 0u
+#define TP_STORE_SECTION_POSITIONS 1u
+#define TP_STORE_SECTION_NORMALS 2u      /* the hull probes' normals (32 bits each) */
+#define TP_STORE_SECTION_SH 3u
+#define TP_STORE_SECTION_PROBE_SOURCE 4u /* stored probe -> input probe */
+#define TP_STORE_SECTION_INPUT_REMAP 5u  /* input probe -> stored probe (empty when nothing was merged) */
+#define TP_STORE_SECTION_CELLS 6u
+#define TP_STORE_SECTION_GRID 7u         /* the start cells of queries without a hint */
+#define TP_STORE_SECTION_OCCLUSION 8u
+#define TP_STORE_SECTION_LEAK_OFFSETS 9u
+#define TP_STORE_SECTION_LEAK_EDGES 10u
+#define TP_STORE_SECTION_PADDING 11u
+#define TP_STORE_SECTION_COUNT 12u
+
 typedef struct tp_store_info {
     uint32_t struct_size;
     uint32_t format_version;
@@ -170,13 +212,21 @@ typedef struct tp_store_info {
     float bounds_max[3];
     uint32_t occlusion_lights;   /* mixed lights with occlusion per probe (0 = none) */
     uint32_t leak_edges;         /* probe pairs that cannot see each other (0 = no leak control) */
+    /* Format 5. */
+    uint32_t layout;             /* TP_LAYOUT_* */
+    uint32_t sh_encoding;        /* TP_SH_ENCODING_* */
+    uint32_t quantized_positions; /* 1: 16 bits per axis over the bounds, 0: float32 */
+    uint32_t hull_probes;        /* probes on the hull (those whose normals the store keeps) */
+    double position_step[3];     /* quantised positions: the largest gap between neighbouring stored values
+                                    on each axis (world units); 0 for float32 positions */
+    uint64_t section_bytes[16];  /* bytes of each part, indexed by TP_STORE_SECTION_* (the rest 0) */
 } tp_store_info;
 
 /** Fills info (set info->struct_size first; fields beyond it are left untouched). */
 TP_API tp_status tp_store_get_info(const tp_store* store, tp_store_info* info);
 
-/** Reads the stored (half-precision) SH of input probe `probe` into out_sh[27]. A merged probe reads
-    its survivor. */
+/** Reads the stored SH of input probe `probe` into out_sh[27], decoded (what a query at the probe
+    returns; zeros in band 2 for the L1 encodings). A merged probe reads its survivor. */
 TP_API tp_status tp_store_probe_sh(const tp_store* store, uint32_t probe, float out_sh[27]);
 
 /** Interpolated SH at position. cell_hint: in, the cell of the last query (-1 = none); out, the cell

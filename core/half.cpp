@@ -65,8 +65,8 @@ void halves_to_floats_scalar(const uint16_t* in, float* out, size_t n) {
 
 void blend_sh_halves_scalar(const uint16_t* const sh[4], const float weights[4], float out[27]) {
     for (int i = 0; i < 27; ++i) {
-        float sum = 0.0f;
-        for (int k = 0; k < 4; ++k) sum += weights[k] * half_to_float(sh[k][i]);
+        float sum = weights[0] * half_to_float(sh[0][i]);
+        for (int k = 1; k < 4; ++k) sum = sum + weights[k] * half_to_float(sh[k][i]);
         out[i] = sum;
     }
 }
@@ -102,16 +102,17 @@ __attribute__((target("avx2,f16c,fma"))) void blend_sh_halves_f16c(const uint16_
     const __m256 w2 = _mm256_set1_ps(weights[2]);
     const __m256 w3 = _mm256_set1_ps(weights[3]);
     for (int chunk = 0; chunk < 3; ++chunk) {
+        // Products then sums, no fused multiply-add: the portable kernel's rounding, bit for bit.
         __m256 sum = _mm256_mul_ps(w0, load_sh_chunk(sh[0], chunk));
-        sum = _mm256_fmadd_ps(w1, load_sh_chunk(sh[1], chunk), sum);
-        sum = _mm256_fmadd_ps(w2, load_sh_chunk(sh[2], chunk), sum);
-        sum = _mm256_fmadd_ps(w3, load_sh_chunk(sh[3], chunk), sum);
+        sum = _mm256_add_ps(sum, _mm256_mul_ps(w1, load_sh_chunk(sh[1], chunk)));
+        sum = _mm256_add_ps(sum, _mm256_mul_ps(w2, load_sh_chunk(sh[2], chunk)));
+        sum = _mm256_add_ps(sum, _mm256_mul_ps(w3, load_sh_chunk(sh[3], chunk)));
         _mm256_storeu_ps(out + 8 * chunk, sum);
     }
     __m128 tail = _mm_mul_ps(_mm256_castps256_ps128(w0), load_sh_tail(sh[0]));
-    tail = _mm_fmadd_ps(_mm256_castps256_ps128(w1), load_sh_tail(sh[1]), tail);
-    tail = _mm_fmadd_ps(_mm256_castps256_ps128(w2), load_sh_tail(sh[2]), tail);
-    tail = _mm_fmadd_ps(_mm256_castps256_ps128(w3), load_sh_tail(sh[3]), tail);
+    tail = _mm_add_ps(tail, _mm_mul_ps(_mm256_castps256_ps128(w1), load_sh_tail(sh[1])));
+    tail = _mm_add_ps(tail, _mm_mul_ps(_mm256_castps256_ps128(w2), load_sh_tail(sh[2])));
+    tail = _mm_add_ps(tail, _mm_mul_ps(_mm256_castps256_ps128(w3), load_sh_tail(sh[3])));
     _mm_storel_pi(reinterpret_cast<__m64*>(out + 24), tail);
     _mm_store_ss(out + 26, _mm_movehl_ps(tail, tail));
 }

@@ -17,8 +17,8 @@ uint16_t float_to_half(float f);
 void halves_to_floats(const uint16_t* in, float* out, size_t n);
 void halves_to_floats_scalar(const uint16_t* in, float* out, size_t n);
 
-// out[i] = sum_k weights[k] * half(sh[k][i]) for the 27 coefficients of four probes (dispatched).
-// Reads exactly 27 halves from each pointer; pointers may repeat.
+// out[i] = ((w0 h0 + w1 h1) + w2 h2) + w3 h3 for the 27 coefficients of four probes (dispatched; both
+// paths give the same bits, see sh_blend.h). Reads exactly 27 halves from each pointer; pointers may repeat.
 void blend_sh_halves(const uint16_t* const sh[4], const float weights[4], float out[27]);
 void blend_sh_halves_scalar(const uint16_t* const sh[4], const float weights[4], float out[27]);
 

@@ -1,6 +1,6 @@
-// Store::interpolate and the batches: locate, then blend the four probes' half SH (the dispatched
-// F16C path or the portable one, see half.h). Batches split into ranges, one per thread.
-#include "core/half.h"
+// Store::interpolate and the batches: locate, then blend the four probes' SH records, decoding them
+// as they are weighed (the encoding's dispatched kernel, see sh_blend.h). Batches split into ranges,
+// one per thread.
 #include "core/leak_control.h"
 #include "core/locate.h"
 #include "core/store.h"
@@ -16,9 +16,9 @@ namespace tetprobe {
 namespace {
 
 void blend(const Store::Impl& s, const Location& loc, float out_sh[27]) {
-    const uint16_t* sh[4];
-    for (int k = 0; k < 4; ++k) sh[k] = s.sh + size_t(loc.probes[k]) * s.sh_halves;
-    blend_sh_halves(sh, loc.weights, out_sh);
+    const uint8_t* records[4];
+    for (int k = 0; k < 4; ++k) records[k] = s.sh + size_t(loc.probes[k]) * s.sh_stride;
+    s.blend_sh(records, loc.weights, out_sh);
 }
 
 // Mixed lights' visibility at the location: the weighted occlusion bytes, in [0, 1]; 1 for channels

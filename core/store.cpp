@@ -3,10 +3,13 @@
 
 #include "core/error.h"
 #include "core/cell_adjacency.h"
-#include "core/half.h"
 #include "core/leak_control.h"
 #include "core/locate.h"
+#include "core/octahedral_normal.h"
+#include "core/position_quantization.h"
+#include "core/sh_encoding.h"
 #include "core/store_impl.h"
+#include "core/store_layout.h"
 #include "core/store_validation.h"
 #include "core/tetrahedron_orientations.h"
 
@@ -30,7 +33,7 @@ namespace {
 // The walk's cell records: the blob's own (fast layout), or rebuilt from its vertices (compact).
 template <class Index>
 void set_cell_records(Store::Impl& s, const uint8_t* section) {
-    if (!(s.header.flags & kFlagCompact)) {
+    if (s.header.layout == kLayoutFast) {
         s.cells = section;
         return;
     }
@@ -41,6 +44,54 @@ void set_cell_records(Store::Impl& s, const uint8_t* section) {
         std::memcpy(records[c].vertices, vertices + 4 * size_t(c), sizeof records[c].vertices);
     rebuild_neighbours(records, s.cell_count, s.dimension);
     s.cells = records;
+}
+
+// Quantised positions decoded to the floats every query decides on.
+void decode_positions(Store::Impl& s, const uint8_t* section) {
+    s.decoded_positions = aligned_bytes(size_t(s.probe_count) * 3 * sizeof(float));
+    float* out = reinterpret_cast<float*>(s.decoded_positions.get());
+    for (size_t i = 0; i < size_t(s.probe_count) * 3; ++i) {
+        uint16_t q;
+        std::memcpy(&q, section + 2 * i, sizeof q);
+        out[i] = decode_position(q, s.header.bounds_min[i % 3], s.header.bounds_max[i % 3]);
+    }
+    s.positions = out;
+}
+
+// Per probe normals: the hull probes' (decoded), zero elsewhere.
+void decode_normals(Store::Impl& s, const uint8_t* section) {
+    const size_t bytes = size_t(s.probe_count) * 3 * sizeof(float);
+    s.decoded_normals = aligned_bytes(bytes);
+    float* out = reinterpret_cast<float*>(s.decoded_normals.get());
+    std::memset(out, 0, bytes);
+    const std::vector<uint32_t> hull = hull_probes(s);
+    const bool quantized = s.header.position_encoding == kPositionsUnorm16;
+    for (size_t i = 0; i < hull.size(); ++i) {
+        float* normal = out + 3 * size_t(hull[i]);
+        if (quantized) {
+            int16_t code[2];
+            std::memcpy(code, section + 4 * i, sizeof code);
+            decode_normal(code, normal);
+        } else {
+            std::memcpy(normal, section + 12 * i, 3 * sizeof(float));
+        }
+    }
+    s.normals = out;
+}
+
+// input_remap, when the blob stores none, as probe_source inverted (a permutation, validated).
+template <class Map>
+void invert_probe_source(Store::Impl& s) {
+    s.inverted_remap = aligned_bytes(size_t(s.probe_count) * sizeof(Map));
+    Map* remap = reinterpret_cast<Map*>(s.inverted_remap.get());
+    const Map* source = static_cast<const Map*>(s.probe_source);
+    for (uint32_t j = 0; j < s.probe_count; ++j) remap[source[j]] = Map(j);
+    s.input_remap = remap;
+}
+
+template <class Map>
+uint32_t map_entry(const void* map, uint32_t i) {
+    return static_cast<const Map*>(map)[i];
 }
 
 }  // namespace
@@ -68,15 +119,26 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     s.probe_count = h.probe_count;
     s.cell_count = h.cell_count;
     s.inner_cell_count = h.inner_cell_count;
-    s.sh_halves = (h.flags & kFlagCompact) ? kShHalvesCompact : kShHalvesFast;
     s.avx2 = cpu_has_avx2() && !getenv("TP_NO_AVX2");
     for (int k = 0; k < 3; ++k) s.origin[k] = h.origin[k];
     auto section = [&](Section id) { return base + table[id].offset; };
-    s.positions = reinterpret_cast<const float*>(section(kSectionPositions));
-    s.normals = reinterpret_cast<const float*>(section(kSectionNormals));
-    s.sh = reinterpret_cast<const uint16_t*>(section(kSectionSh));
-    s.probe_source = reinterpret_cast<const uint32_t*>(section(kSectionProbeSource));
-    s.input_remap = reinterpret_cast<const uint32_t*>(section(kSectionInputRemap));
+    if (h.position_encoding == kPositionsUnorm16)
+        decode_positions(s, section(kSectionPositions));
+    else
+        s.positions = reinterpret_cast<const float*>(section(kSectionPositions));
+    s.sh_encoding = ShEncoding(h.sh_encoding);
+    s.sh = section(kSectionSh);
+    s.sh_stride = sh_record_bytes(s.sh_encoding, h.layout == kLayoutFast);
+    s.blend_sh = sh_blend_function(s.sh_encoding);
+    s.map16 = store_map_bytes(h.input_probe_count) == 2;
+    s.probe_source = section(kSectionProbeSource);
+    s.input_remap = section(kSectionInputRemap);
+    if (h.input_probe_count == h.probe_count) {
+        if (s.map16)
+            invert_probe_source<uint16_t>(s);
+        else
+            invert_probe_source<uint32_t>(s);
+    }
     s.grid_cells = section(kSectionGrid);
     if (h.flags & kFlagOcclusion) {
         s.occlusion_lights = h.occlusion_lights;
@@ -91,6 +153,7 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     else
         set_cell_records<uint16_t>(s, section(kSectionCells));
     validate_cell_records(s);
+    decode_normals(s, section(kSectionNormals));
     if (s.leak_offsets) mark_blocked_cells(s);
     return store;
 }
@@ -100,11 +163,13 @@ size_t Store::blob_size() const { return impl_->size; }
 const StoreHeader& Store::header() const { return impl_->header; }
 
 uint32_t Store::probe_source(uint32_t stored) const {
-    return stored < impl_->probe_count ? impl_->probe_source[stored] : kNone32;
+    if (stored >= impl_->probe_count) return kNone32;
+    return impl_->map16 ? map_entry<uint16_t>(impl_->probe_source, stored) : map_entry<uint32_t>(impl_->probe_source, stored);
 }
 
 uint32_t Store::input_to_stored(uint32_t input) const {
-    return input < impl_->header.input_probe_count ? impl_->input_remap[input] : kNone32;
+    if (input >= impl_->header.input_probe_count) return kNone32;
+    return impl_->map16 ? map_entry<uint16_t>(impl_->input_remap, input) : map_entry<uint32_t>(impl_->input_remap, input);
 }
 
 void Store::probe_sh(uint32_t stored, float out[27]) const {
@@ -112,7 +177,7 @@ void Store::probe_sh(uint32_t stored, float out[27]) const {
         std::fill(out, out + 27, 0.0f);
         return;
     }
-    halves_to_floats(impl_->sh + size_t(stored) * impl_->sh_halves, out, 27);
+    decode_sh_record(impl_->sh_encoding, impl_->sh + size_t(stored) * impl_->sh_stride, out);
 }
 
 void Store::probe_occlusion(uint32_t stored, uint8_t out[4]) const {

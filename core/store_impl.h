@@ -2,6 +2,7 @@
 // shared by loading (store.cpp), the walk (locate.cpp) and the blend (interpolate.cpp).
 #pragma once
 
+#include "core/sh_blend.h"
 #include "core/store.h"
 
 #include <cstdint>
@@ -35,18 +36,24 @@ struct Store::Impl {
     uint32_t probe_count = 0;
     uint32_t cell_count = 0;
     uint32_t inner_cell_count = 0;
-    uint32_t sh_halves = kShHalvesFast;  // halves per probe in the SH section
     bool avx2 = false;                   // the walk's AVX2 kernel runs on this CPU
     double origin[3] = {0, 0, 0};
 
-    const float* positions = nullptr;        // 3 per probe
-    const float* normals = nullptr;          // 3 per probe
-    const uint16_t* sh = nullptr;            // sh_halves per probe
-    const uint32_t* probe_source = nullptr;  // per probe
-    const uint32_t* input_remap = nullptr;   // per input probe
+    const float* positions = nullptr;        // 3 per probe (the blob's, or decoded)
+    const float* normals = nullptr;          // 3 per probe, decoded (zero off the hull)
+    ShEncoding sh_encoding = kShHalf;
+    const uint8_t* sh = nullptr;             // one record of sh_stride bytes per probe
+    size_t sh_stride = 0;
+    ShBlendFunction blend_sh = nullptr;      // the encoding's dispatched blend
+    bool map16 = false;                      // probe maps are uint16 (else uint32)
+    const void* probe_source = nullptr;      // per probe
+    const void* input_remap = nullptr;       // per input probe (the blob's, or probe_source inverted)
     const void* cells = nullptr;             // CellRecord<Index> per cell (the blob's, or rebuilt)
     const void* grid_cells = nullptr;        // grid[0]*grid[1]*grid[2] indices
     AlignedBytes rebuilt_cells;              // compact layout: the cell records rebuilt on load
+    AlignedBytes decoded_positions;          // quantised positions as floats
+    AlignedBytes decoded_normals;            // the hull probes' normals, per probe
+    AlignedBytes inverted_remap;             // input_remap when the blob stores none
 
     // Optional scene data (null / 0 when the blob has none).
     uint32_t occlusion_lights = 0;

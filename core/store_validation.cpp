@@ -5,12 +5,15 @@
 #include "core/error.h"
 #include "core/orientation.h"
 #include "core/plane_projection.h"
+#include "core/position_quantization.h"
+#include "core/sh_encoding.h"
 #include "core/store_format.h"
 #include "core/store_layout.h"
 
 #include <cmath>
 #include <cstring>
 #include <string>
+#include <vector>
 
 namespace tetprobe {
 
@@ -30,11 +33,6 @@ uint32_t widen_index(Index value) {
     return uint32_t(value);
 }
 
-void check_finite_floats(const float* values, uint64_t count, const char* section) {
-    for (uint64_t i = 0; i < count; ++i)
-        if (!std::isfinite(values[i])) reject(at(section, i) + " is not finite");
-}
-
 void check_header(const StoreHeader& h, size_t size) {
     if (h.header_size != kHeaderSize)
         reject("header_size is " + std::to_string(h.header_size) + ", expected " + std::to_string(kHeaderSize));
@@ -43,6 +41,11 @@ void check_header(const StoreHeader& h, size_t size) {
     if (size < kHeaderSize) reject("truncated: " + std::to_string(size) + " bytes, the section table ends at " +
                                    std::to_string(kHeaderSize));
     if (h.reserved != 0) reject("reserved header field is not zero");
+    if (h.layout >= kLayoutCount) reject("layout " + std::to_string(h.layout) + " is unknown (0 fast, 1 compact, 2 rebuilt)");
+    if (h.sh_encoding >= kShEncodingCount)
+        reject("sh_encoding " + std::to_string(h.sh_encoding) + " is unknown (0 half, 1 unorm8, 2 half_l1, 3 unorm8_l1)");
+    if (h.position_encoding >= kPositionEncodingCount)
+        reject("position_encoding " + std::to_string(h.position_encoding) + " is unknown (0 float32, 1 unorm16)");
     const bool occlusion = (h.flags & kFlagOcclusion) != 0;
     if (occlusion != (h.occlusion_lights != 0) || h.occlusion_lights > kOcclusionChannels)
         reject("occlusion_lights is " + std::to_string(h.occlusion_lights) + ", expected " +
@@ -61,6 +64,9 @@ void check_header(const StoreHeader& h, size_t size) {
         reject("a dimension-0 store must have exactly 1 probe and 1 cell");
     if ((h.flags & kFlagNoExtrapolation) && h.cell_count != h.inner_cell_count)
         reject("a store without extrapolation has outer cells");
+    if (h.hull_probe_count > h.probe_count) reject("hull_probe_count exceeds probe_count");
+    if (h.cell_count == h.inner_cell_count && h.hull_probe_count != 0)
+        reject("hull_probe_count is " + std::to_string(h.hull_probe_count) + " in a store without outer cells");
     const uint32_t max_count = (h.flags & kFlagIndex32) ? kOuter32 - 1 : kMaxIndex16;
     if (h.probe_count > max_count || h.cell_count > max_count)
         reject("probe_count or cell_count does not fit the index width");
@@ -97,7 +103,8 @@ void check_sections(const uint8_t* data, size_t size, const StoreHeader& h, Sect
 // Vertex slots (and, in the fast layout, neighbour indices by range) of every cell; grid entries.
 template <class Index>
 void check_cell_indices(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
-    const bool compact = (h.flags & kFlagCompact) != 0;
+    if (h.layout == kLayoutRebuilt) return;  // no cells and no grid stored
+    const bool compact = h.layout == kLayoutCompact;
     const uint32_t stride = compact ? 4 : 8;
     const Index* cells = reinterpret_cast<const Index*>(data + table[kSectionCells].offset);
     const Index* grid = reinterpret_cast<const Index*>(data + table[kSectionGrid].offset);
@@ -125,27 +132,63 @@ void check_cell_indices(const uint8_t* data, const StoreHeader& h, const Section
         if (widen_index(grid[i]) >= h.cell_count) reject(at("grid", i) + " is not a cell");
 }
 
-void check_probes(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
-    const uint64_t probes = h.probe_count;
-    check_finite_floats(reinterpret_cast<const float*>(data + table[kSectionPositions].offset), probes * 3, "positions");
-    check_finite_floats(reinterpret_cast<const float*>(data + table[kSectionNormals].offset), probes * 3, "normals");
-    const uint64_t halves = (h.flags & kFlagCompact) ? kShHalvesCompact : kShHalvesFast;
-    const uint16_t* sh = reinterpret_cast<const uint16_t*>(data + table[kSectionSh].offset);
-    for (uint64_t p = 0; p < probes; ++p) {
-        for (uint64_t i = 0; i < halves; ++i) {
-            const uint16_t value = sh[p * halves + i];
-            if (i >= 27 && value != 0) reject(at("sh", p * halves + i) + " is padding and must be zero");
-            if ((value & 0x7C00u) == 0x7C00u) reject(at("sh", p * halves + i) + " is not a finite half");
-        }
+// Positions finite and inside the bounds, normals finite (float32; quantised positions decode inside
+// the bounds and octahedral normals to unit vectors by construction).
+void check_positions(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
+    if (h.position_encoding == kPositionsUnorm16) return;
+    const float* normals = reinterpret_cast<const float*>(data + table[kSectionNormals].offset);
+    for (uint64_t i = 0; i < uint64_t(h.hull_probe_count) * 3; ++i)
+        if (!std::isfinite(normals[i])) reject(at("normals", i) + " is not finite");
+    const float* positions = reinterpret_cast<const float*>(data + table[kSectionPositions].offset);
+    for (uint64_t i = 0; i < uint64_t(h.probe_count) * 3; ++i) {
+        const float x = positions[i];
+        if (!std::isfinite(x)) reject(at("positions", i) + " is not finite");
+        if (x < h.bounds_min[i % 3] || x > h.bounds_max[i % 3]) reject(at("positions", i) + " lies outside the bounds");
     }
-    const uint32_t* source = reinterpret_cast<const uint32_t*>(data + table[kSectionProbeSource].offset);
-    const uint32_t* remap = reinterpret_cast<const uint32_t*>(data + table[kSectionInputRemap].offset);
+}
+
+// Every record's halves finite, the fast layout's padding zero.
+void check_sh(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
+    const ShEncoding encoding = ShEncoding(h.sh_encoding);
+    const uint64_t stride = sh_record_bytes(encoding, h.layout == kLayoutFast);
+    const uint64_t used = sh_record_bytes(encoding, false);
+    const uint8_t* sh = data + table[kSectionSh].offset;
+    for (uint64_t p = 0; p < h.probe_count; ++p) {
+        const uint8_t* record = sh + p * stride;
+        const int bad = first_nonfinite_sh_half(encoding, record);
+        if (bad >= 0) reject("sh of probe " + std::to_string(p) + ": half " + std::to_string(bad) + " is not finite");
+        for (uint64_t i = used; i < stride; ++i)
+            if (record[i] != 0) reject("sh of probe " + std::to_string(p) + ": byte " + std::to_string(i) + " is padding and must be zero");
+    }
+}
+
+template <class Map>
+void check_maps_of_width(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
+    const Map* source = reinterpret_cast<const Map*>(data + table[kSectionProbeSource].offset);
+    const Map* remap = reinterpret_cast<const Map*>(data + table[kSectionInputRemap].offset);
+    if (h.input_probe_count == h.probe_count) {
+        // No remap stored: probe_source must be a permutation, which the loader inverts.
+        std::vector<bool> seen(h.input_probe_count, false);
+        for (uint64_t s = 0; s < h.probe_count; ++s) {
+            if (source[s] >= h.input_probe_count) reject(at("probe_source", s) + " is not an input probe");
+            if (seen[source[s]]) reject(at("probe_source", s) + " repeats an input probe (no probe was merged)");
+            seen[source[s]] = true;
+        }
+        return;
+    }
     for (uint64_t i = 0; i < h.input_probe_count; ++i)
         if (remap[i] >= h.probe_count) reject(at("input_remap", i) + " is not a stored probe");
-    for (uint64_t s = 0; s < probes; ++s) {
+    for (uint64_t s = 0; s < h.probe_count; ++s) {
         if (source[s] >= h.input_probe_count) reject(at("probe_source", s) + " is not an input probe");
         if (remap[source[s]] != s) reject(at("probe_source", s) + " does not map back to the probe through input_remap");
     }
+}
+
+void check_maps(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
+    if (store_map_bytes(h.input_probe_count) == 2)
+        check_maps_of_width<uint16_t>(data, h, table);
+    else
+        check_maps_of_width<uint32_t>(data, h, table);
 }
 
 // Occlusion bytes of unused channels, and the leak lists: offsets spanning the edges, partners above
@@ -256,7 +299,12 @@ void validate_store_blob(const uint8_t* data, size_t size) {
     const uint64_t stored = h.checksum;
     const uint64_t computed = store_checksum(data, size);
     if (stored != computed) reject("checksum mismatch (the blob is corrupt)");
-    check_probes(data, h, table);
+    if (h.layout == kLayoutRebuilt)
+        throw Error(Status::unsupported, "store blob of the rebuilt layout (cells rebuilt when loaded): this library "
+                                         "cannot rebuild cells yet; build the store with the fast or compact layout");
+    check_positions(data, h, table);
+    check_sh(data, h, table);
+    check_maps(data, h, table);
     check_scene_data(data, h, table);
     if (h.flags & kFlagIndex32)
         check_cell_indices<uint32_t>(data, h, table);
@@ -269,6 +317,24 @@ void validate_cell_records(const Store::Impl& store) {
         check_records<uint32_t>(store);
     else
         check_records<uint16_t>(store);
+}
+
+std::vector<uint32_t> hull_probes(const Store::Impl& store) {
+    std::vector<bool> on_hull(store.probe_count, false);
+    for (uint32_t c = store.inner_cell_count; c < store.cell_count; ++c) {
+        for (uint32_t k = 0; k < store.dimension; ++k) {
+            const uint32_t v = store.index32 ? static_cast<const CellRecord<uint32_t>*>(store.cells)[c].vertices[k]
+                                             : static_cast<const CellRecord<uint16_t>*>(store.cells)[c].vertices[k];
+            on_hull[v] = true;
+        }
+    }
+    std::vector<uint32_t> hull;
+    for (uint32_t p = 0; p < store.probe_count; ++p)
+        if (on_hull[p]) hull.push_back(p);
+    if (hull.size() != store.header.hull_probe_count)
+        reject("hull_probe_count is " + std::to_string(store.header.hull_probe_count) + " but the outer cells have " +
+               std::to_string(hull.size()) + " probes");
+    return hull;
 }
 
 }  // namespace tetprobe

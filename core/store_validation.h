@@ -5,14 +5,16 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <vector>
 
 namespace tetprobe {
 
-// Validates a blob held in aligned memory (size bytes, all readable): header, section table,
-// checksum, probes, every cell vertex and grid index, and (fast layout) every neighbour index
-// against its count. Throws Error(Status::invalid_blob) naming the first problem found, or
-// Error(Status::version) for a well-formed blob of another format version (formats 2 and 3 included).
-// Reads nothing outside [data, data + size).
+// Validates a blob held in aligned memory (size bytes, all readable): header (encodings and layout
+// included), section table, checksum, positions, SH records, probe maps, scene data, every cell vertex
+// and grid index, and (fast layout) every neighbour index against its count. Throws
+// Error(Status::invalid_blob) naming the first problem found, Error(Status::version) for a blob of
+// another format version (formats 2 to 4 included), or Error(Status::unsupported) for a well-formed
+// blob of the rebuilt layout. Reads nothing outside [data, data + size).
 void validate_store_blob(const uint8_t* data, size_t size);
 
 // Validates the cell records of a loaded store (the blob's, or those rebuilt from a compact blob):
@@ -20,5 +22,9 @@ void validate_store_blob(const uint8_t* data, size_t size);
 // holds every vertex of the facet), and every inner cell is oriented positively or is flat
 // (exact orientation on the stored positions). Throws Error(Status::invalid_blob).
 void validate_cell_records(const Store::Impl& store);
+
+// The hull probes of a loaded store (the probes of its outer cells, whose normals the blob stores),
+// in increasing order. Throws Error(Status::invalid_blob) unless there are header.hull_probe_count.
+std::vector<uint32_t> hull_probes(const Store::Impl& store);
 
 }  // namespace tetprobe

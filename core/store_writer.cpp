@@ -1,6 +1,8 @@
-// write_store_blob: StoreData -> the format-4 blob laid out as store_format.h describes (fast or compact).
+// write_store_blob: StoreData -> the format-5 blob laid out as store_format.h describes.
 #include "core/error.h"
-#include "core/half.h"
+#include "core/octahedral_normal.h"
+#include "core/position_quantization.h"
+#include "core/sh_encoding.h"
 #include "core/store.h"
 #include "core/store_data.h"
 #include "core/store_layout.h"
@@ -17,7 +19,6 @@ namespace tetprobe {
 
 namespace {
 
-constexpr float kHalfMax = 65504.0f;
 
 // The message is built only when the condition fails (the per-value checks below run millions of times).
 template <class Message>
@@ -57,14 +58,64 @@ void write_indices(uint8_t* out, const std::vector<uint32_t>& indices, bool inde
     }
 }
 
-// 27 halves per probe at `halves` per probe (the padding stays zero).
-void write_sh(uint8_t* out, const std::vector<float>& sh, uint32_t halves) {
-    for (size_t i = 0; i < sh.size(); ++i) {
-        float value = sh[i];
-        require(std::isfinite(value), [&] { return "sh[" + std::to_string(i) + "] is not finite"; });
-        value = value < -kHalfMax ? -kHalfMax : (value > kHalfMax ? kHalfMax : value);
-        const uint16_t half = float_to_half(value);
-        std::memcpy(out + ((i / 27) * halves + i % 27) * sizeof half, &half, sizeof half);
+// Probe maps at the blob's width (16 or 32 bits).
+void write_map(uint8_t* out, const std::vector<uint32_t>& map, uint64_t width) {
+    for (size_t i = 0; i < map.size(); ++i) {
+        if (width == 4) {
+            std::memcpy(out + 4 * i, &map[i], 4);
+        } else {
+            const uint16_t narrow = uint16_t(map[i]);
+            std::memcpy(out + 2 * i, &narrow, 2);
+        }
+    }
+}
+
+// Probes of the outer cells (the hull probes whose normals are stored), ascending.
+std::vector<uint32_t> hull_probes(const StoreData& data) {
+    std::vector<bool> on_hull(data.probe_count(), false);
+    for (size_t c = data.inner_cell_count; c < data.cell_count(); ++c)
+        for (uint32_t k = 0; k < data.dimension; ++k) {
+            const uint32_t v = data.cell_vertices[4 * c + k];
+            require(v < data.probe_count(), [&] { return "cell " + std::to_string(c) + " names no probe"; });
+            on_hull[v] = true;
+        }
+    std::vector<uint32_t> hull;
+    for (uint32_t p = 0; p < data.probe_count(); ++p)
+        if (on_hull[p]) hull.push_back(p);
+    return hull;
+}
+
+// Hull normals non-zero (and with quantised positions on the octahedral grid), every other normal
+// zero (what the blob can hold).
+void require_storable_normals(const StoreData& data, const std::vector<uint32_t>& hull) {
+    std::vector<bool> on_hull(data.probe_count(), false);
+    for (uint32_t p : hull) on_hull[p] = true;
+    for (uint32_t p = 0; p < data.probe_count(); ++p) {
+        const float* n = &data.normals[3 * size_t(p)];
+        if (!on_hull[p]) {
+            require(n[0] == 0 && n[1] == 0 && n[2] == 0,
+                    [&] { return "normal of probe " + std::to_string(p) + ", not on the hull, is not zero"; });
+            continue;
+        }
+        require(n[0] != 0 || n[1] != 0 || n[2] != 0, [&] { return "normal of hull probe " + std::to_string(p) + " is zero"; });
+        if (data.position_encoding != kPositionsUnorm16) continue;
+        const double wide[3] = {n[0], n[1], n[2]};
+        float stored[3];
+        quantize_normal(wide, stored);
+        require(stored[0] == n[0] && stored[1] == n[1] && stored[2] == n[2], [&] {
+            return "normal of hull probe " + std::to_string(p) + " is not on the octahedral grid (quantize_normal)";
+        });
+    }
+}
+
+// Positions inside the bounds, and for quantised positions on their grid.
+void require_storable_positions(const StoreData& data) {
+    for (size_t i = 0; i < data.positions.size(); ++i) {
+        const float p = data.positions[i], lo = data.bounds_min[i % 3], hi = data.bounds_max[i % 3];
+        require(p >= lo && p <= hi, [&] { return "positions[" + std::to_string(i) + "] lies outside the bounds"; });
+        if (data.position_encoding == kPositionsUnorm16)
+            require(quantize_position(p, lo, hi) == p,
+                    [&] { return "positions[" + std::to_string(i) + "] is not on the quantisation grid of the bounds"; });
     }
 }
 
@@ -79,6 +130,9 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     require(data.dimension <= 3, [&] { return "dimension " + std::to_string(data.dimension) + " is above 3"; });
     require(data.axis <= 2, [&] { return "axis " + std::to_string(data.axis) + " is above 2"; });
     require(data.inner_cell_count <= cells, [&] { return "inner_cell_count exceeds the cell count"; });
+    require(data.layout < kLayoutCount && data.sh_encoding < kShEncodingCount &&
+                data.position_encoding < kPositionEncodingCount,
+            [&] { return "unknown layout or encoding"; });
     require_size(data.positions.size(), probes * 3, "positions");
     require_size(data.normals.size(), probes * 3, "normals");
     require_size(data.sh.size(), probes * 27, "sh");
@@ -89,7 +143,23 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     require_finite(data.normals, "normals");
     for (int k = 0; k < 3; ++k)
         require(std::isfinite(data.origin[k]) && std::isfinite(data.bounds_min[k]) &&
-                    std::isfinite(data.bounds_max[k]), [&] { return "origin or bounds not finite"; });
+                    std::isfinite(data.bounds_max[k]) && data.bounds_min[k] <= data.bounds_max[k],
+                [&] { return "origin or bounds not finite, or bounds not ordered"; });
+    for (size_t i = 0; i < data.sh.size(); ++i)
+        require(std::isfinite(data.sh[i]), [&] { return "sh[" + std::to_string(i) + "] is not finite"; });
+    require_storable_positions(data);
+    const std::vector<uint32_t> hull = hull_probes(data);
+    require_storable_normals(data, hull);
+    for (size_t j = 0; j < probes; ++j)
+        require(data.probe_source[j] < data.input_probe_count,
+                [&] { return "probe_source[" + std::to_string(j) + "] is not an input probe"; });
+    for (size_t i = 0; i < data.input_remap.size(); ++i)
+        require(data.input_remap[i] < probes, [&] { return "input_remap[" + std::to_string(i) + "] is not a stored probe"; });
+    const bool remap_stored = data.input_probe_count != probes;
+    if (!remap_stored)
+        for (uint32_t i = 0; i < probes; ++i)
+            require(data.probe_source[data.input_remap[i]] == i,
+                    [&] { return "no probe was merged, but input_remap is not probe_source inverted"; });
 
     require(data.occlusion_lights <= kOcclusionChannels, [&] { return "more than 4 occlusion lights"; });
     if (data.occlusion_lights > 0) {
@@ -115,11 +185,14 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     std::memcpy(header.magic, kStoreMagic, sizeof header.magic);
     header.format_version = kStoreFormatVersion;
     header.header_size = uint32_t(kHeaderSize);
-    header.flags = (data.flags & (kFlagNoExtrapolation | kFlagCompact)) | (index32 ? kFlagIndex32 : 0u) |
+    header.flags = (data.flags & kFlagNoExtrapolation) | (index32 ? kFlagIndex32 : 0u) |
                    (data.occlusion_lights > 0 ? kFlagOcclusion : 0u) | (leak ? kFlagLeakControl : 0u);
     header.occlusion_lights = data.occlusion_lights;
     header.leak_edge_count = uint32_t(data.leak_edges.size());
-    const bool compact = (data.flags & kFlagCompact) != 0;
+    header.layout = data.layout;
+    header.sh_encoding = data.sh_encoding;
+    header.position_encoding = data.position_encoding;
+    header.hull_probe_count = uint32_t(hull.size());
     header.dimension = data.dimension;
     header.axis = data.dimension == 1 || data.dimension == 2 ? data.axis : 0;
     header.probe_count = uint32_t(probes);
@@ -154,21 +227,45 @@ std::vector<uint8_t> write_store_blob(const StoreData& data) {
     auto copy_words = [&](Section s, const std::vector<uint32_t>& v) {
         if (!v.empty()) std::memcpy(base + table[s].offset, v.data(), v.size() * sizeof(uint32_t));
     };
-    copy_floats(kSectionPositions, data.positions);
-    copy_floats(kSectionNormals, data.normals);
-    write_sh(base + table[kSectionSh].offset, data.sh, compact ? kShHalvesCompact : kShHalvesFast);
-    copy_words(kSectionProbeSource, data.probe_source);
-    copy_words(kSectionInputRemap, data.input_remap);
-    // Fast: {vertices[4], neighbours[4]} per cell; compact: vertices[4] only.
+    uint8_t* positions = base + table[kSectionPositions].offset;
+    if (data.position_encoding == kPositionsUnorm16) {
+        for (size_t i = 0; i < data.positions.size(); ++i) {
+            const uint16_t q = encode_position(data.positions[i], data.bounds_min[i % 3], data.bounds_max[i % 3]);
+            std::memcpy(positions + 2 * i, &q, sizeof q);
+        }
+    } else {
+        copy_floats(kSectionPositions, data.positions);
+    }
+    for (size_t i = 0; i < hull.size(); ++i) {
+        const float* n = &data.normals[3 * size_t(hull[i])];
+        if (data.position_encoding != kPositionsUnorm16) {
+            std::memcpy(base + table[kSectionNormals].offset + 12 * i, n, 3 * sizeof(float));
+            continue;
+        }
+        const double wide[3] = {n[0], n[1], n[2]};
+        int16_t code[2];
+        encode_normal(wide, code);
+        std::memcpy(base + table[kSectionNormals].offset + 4 * i, code, sizeof code);
+    }
+    const uint32_t record = sh_record_bytes(data.sh_encoding, data.layout == kLayoutFast);
+    for (size_t p = 0; p < probes; ++p)
+        encode_sh_record(data.sh_encoding, &data.sh[27 * p], base + table[kSectionSh].offset + p * record);
+    const uint64_t map_bytes = store_map_bytes(data.input_probe_count);
+    write_map(base + table[kSectionProbeSource].offset, data.probe_source, map_bytes);
+    if (remap_stored) write_map(base + table[kSectionInputRemap].offset, data.input_remap, map_bytes);
+    // Fast: {vertices[4], neighbours[4]} per cell; compact: vertices[4] only; rebuilt: nothing.
+    const bool fast = data.layout == kLayoutFast;
     std::vector<uint32_t> cell_indices;
-    cell_indices.reserve(cells * (compact ? 4 : 8));
-    for (size_t c = 0; c < cells; ++c) {
-        cell_indices.insert(cell_indices.end(), &data.cell_vertices[4 * c], &data.cell_vertices[4 * c] + 4);
-        if (!compact)
-            cell_indices.insert(cell_indices.end(), &data.cell_neighbours[4 * c], &data.cell_neighbours[4 * c] + 4);
+    if (data.layout != kLayoutRebuilt) {
+        cell_indices.reserve(cells * (fast ? 8 : 4));
+        for (size_t c = 0; c < cells; ++c) {
+            cell_indices.insert(cell_indices.end(), &data.cell_vertices[4 * c], &data.cell_vertices[4 * c] + 4);
+            if (fast)
+                cell_indices.insert(cell_indices.end(), &data.cell_neighbours[4 * c], &data.cell_neighbours[4 * c] + 4);
+        }
     }
     write_indices(base + table[kSectionCells].offset, cell_indices, index32, "cells");
-    write_indices(base + table[kSectionGrid].offset, data.grid_cells, index32, "grid_cells");
+    if (data.layout != kLayoutRebuilt) write_indices(base + table[kSectionGrid].offset, data.grid_cells, index32, "grid_cells");
     if (data.occlusion_lights > 0)
         std::memcpy(base + table[kSectionOcclusion].offset, data.occlusion.data(), data.occlusion.size());
     if (leak) {

@@ -16,7 +16,7 @@ __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Index>& cells, uin
     if (c < inner) {
         // The start cell is usually the answer: ask for its probes' SH while the orientations compute.
         const CellRecord<Index>& r = cells.records[c];
-        for (int k = 0; k < 4; ++k) __builtin_prefetch(cells.s.sh + size_t(r.vertices[k]) * cells.s.sh_halves);
+        for (int k = 0; k < 4; ++k) __builtin_prefetch(cells.s.sh + size_t(r.vertices[k]) * cells.s.sh_stride);
     }
     while (c < inner && *steps <= step_cap) {
         const CellRecord<Index>& r = cells.records[c];

@@ -16,7 +16,9 @@ struct BlobSh {
     std::vector<uint32_t> input_remap;
 };
 
-// False if the store's blob is not the format-3 layout this benchmark reads.
+// False unless the store is a format-5 blob in the half encoding (what this benchmark reads).
 bool read_blob_sh(const tp_store* store, BlobSh* out);
+// The same from a blob's bytes (valid while they live); false also for a blob too short for its sections.
+bool read_blob_sh(const void* blob, size_t size, BlobSh* out);
 
 }  // namespace bench

@@ -1,5 +1,7 @@
 #include "plain_walk.h"
 
+#include "blob_sh.h"
+
 #include "bench_timing.h"
 #include "core/half.h"
 #include "core/store_format.h"
@@ -73,7 +75,8 @@ bool plain_walk_mesh_from_blob(const void* blob, size_t size, PlainWalkMesh* mes
     StoreHeader h;
     std::memcpy(&h, bytes, sizeof h);
     if (h.format_version != kStoreFormatVersion) return *why = "not a blob of this format", false;
-    if (h.flags & kFlagCompact) return *why = "the plain walk reads the fast layout's neighbours", false;
+    if (h.layout != kLayoutFast) return *why = "the plain walk reads the fast layout's neighbours", false;
+    if (h.position_encoding != kPositionsFloat32) return *why = "the plain walk reads float positions", false;
     if (h.dimension != 3) return *why = "the plain walk needs a 3-dimensional probe set", false;
     SectionEntry s[kSectionCount];
     std::memcpy(s, bytes + sizeof(StoreHeader), sizeof s);
@@ -82,16 +85,16 @@ bool plain_walk_mesh_from_blob(const void* blob, size_t size, PlainWalkMesh* mes
     const bool wide = (h.flags & kFlagIndex32) != 0;
     const size_t index_bytes = wide ? 4 : 2;
     const uint32_t none = wide ? kNone32 : kNone16;
-    if (s[kSectionPositions].size != 12ull * h.probe_count || s[kSectionSh].size != 64ull * h.probe_count ||
-        s[kSectionCells].size != 8ull * index_bytes * h.cell_count ||
-        s[kSectionInputRemap].size != 4ull * h.input_probe_count || h.inner_cell_count > h.cell_count)
+    if (s[kSectionPositions].size != 12ull * h.probe_count || s[kSectionCells].size != 8ull * index_bytes * h.cell_count ||
+        h.inner_cell_count > h.cell_count)
         return *why = "section sizes do not match the header's counts", false;
+    bench::BlobSh sh;
+    if (!bench::read_blob_sh(blob, size, &sh)) return *why = "the plain walk reads half SH", false;
 
     for (int k = 0; k < 3; ++k) mesh->origin[k] = h.origin[k];
-    mesh->sh = reinterpret_cast<const uint16_t*>(bytes + s[kSectionSh].offset);
-    mesh->sh_stride = kShHalvesFast;
-    mesh->input_remap.resize(h.input_probe_count);
-    std::memcpy(mesh->input_remap.data(), bytes + s[kSectionInputRemap].offset, 4ull * h.input_probe_count);
+    mesh->sh = sh.sh;
+    mesh->sh_stride = sh.stride;
+    mesh->input_remap = std::move(sh.input_remap);
 
     const float* pos = reinterpret_cast<const float*>(bytes + s[kSectionPositions].offset);
     const uint8_t* cells = bytes + s[kSectionCells].offset;

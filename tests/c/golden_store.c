@@ -3,9 +3,11 @@
  * library on every platform): their answers are known exactly, files round-trip, bad blobs and file
  * errors fail with the documented status.
  *
- * tiny_store_v4.bin: one tetrahedron with corners origin + {0, e_x, e_y, e_z}, origin (10, -20, 30.5),
+ * tiny_store_v5.bin: one tetrahedron with corners origin + {0, e_x, e_y, e_z}, origin (10, -20, 30.5),
  * built without extrapolation from five input probes (input 3 merged into input 1); store probe j
  * (inputs 0, 1, 2, 4) holds SH coefficient k = ((27 j + k) mod 23) / 4 - 2, exact in half precision.
+ * tiny_store_<encoding>_<layout>[_quantized]_v5.bin: the same store in each SH encoding, layout and
+ * position encoding, its SH a non-negative radiance (golden_radiance_sh); test_store_blob.cpp writes them.
  */
 #include "harness.h"
 
@@ -14,6 +16,13 @@ static const uint32_t kInputOfProbe[4] = {0, 1, 2, 4};
 static const uint32_t kProbeOfInput[5] = {0, 1, 2, 1, 3};
 
 static float golden_sh(uint32_t probe, int k) { return (float)(((27 * (int)probe + k) % 23) * 0.25 - 2.0); }
+
+/* Channel c of probe j: L0 = 1 + j / 2 + c / 4, coefficient i = L0 * ((9j + 3c + i) mod 7 - 3) / 8. */
+static float golden_radiance_sh(uint32_t probe, int k) {
+    const int c = k / 9, i = k % 9;
+    const float l0 = 1.0f + 0.5f * (float)probe + 0.25f * (float)c;
+    return i == 0 ? l0 : l0 * (float)((int)((9 * probe + 3 * (uint32_t)c + (uint32_t)i) % 7) - 3) * 0.125f;
+}
 
 /* World position of the point with local (tetrahedron) coordinates x, y, z. */
 static void world(float out[3], double x, double y, double z) {
@@ -43,7 +52,7 @@ static tp_store* load_golden(const char* name) {
 }
 
 void test_golden_store_answers(void) {
-    tp_store* store = load_golden("tiny_store_v4.bin");
+    tp_store* store = load_golden("tiny_store_v5.bin");
     tp_store_info info;
     float out[27], weights[4], p[3];
     uint32_t probes[4];
@@ -52,12 +61,13 @@ void test_golden_store_answers(void) {
     memset(&info, 0, sizeof info);
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
-    CHECK(info.format_version == 4 && info.dimension == 3);
+    CHECK(info.format_version == 5 && info.dimension == 3);
     CHECK(info.probes == 4 && info.input_probes == 5 && info.merged_probes == 1);
     CHECK(info.cells == 1 && info.inner_cells == 1 && info.outer_cells == 0);
     CHECK(info.index_bits == 16 && info.flags == TP_BUILD_NO_EXTRAPOLATION);
     CHECK(info.grid[0] == 1 && info.grid[1] == 1 && info.grid[2] == 1);
-    CHECK(info.bytes == 720);
+    CHECK(info.sh_encoding == TP_SH_ENCODING_HALF && info.layout == TP_LAYOUT_FAST && info.quantized_positions == 0);
+    CHECK(info.hull_probes == 0);
     for (k = 0; k < 3; ++k) {
         CHECK(info.origin[k] == kOrigin[k]);
         CHECK(info.bounds_min[k] == (float)kOrigin[k] && info.bounds_max[k] == (float)(kOrigin[k] + 1.0));
@@ -122,7 +132,7 @@ void test_golden_store_answers(void) {
     tp_store_release(store);
 
     /* The second golden blob has outer cells: far outside is answered from them, inside from the cell. */
-    store = load_golden("tetrahedron_outer_cells_v4.bin");
+    store = load_golden("tetrahedron_outer_cells_v5.bin");
     if (store) {
         static const float directions[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         tp_location location;
@@ -172,7 +182,7 @@ void test_golden_store_queries_and_errors(void) {
     static int32_t single_hints[M], batch_hints[M], padded_hints[2 * M];
     static uint32_t single_probes[4 * M], batch_probes[4 * M];
     static float single_weights[4 * M], batch_weights[4 * M];
-    tp_store* store = load_golden("tiny_store_v4.bin");
+    tp_store* store = load_golden("tiny_store_v5.bin");
     tp_batch_options options;
     tp_location location;
     tp_store_info info;
@@ -290,7 +300,7 @@ void test_golden_store_files(void) {
     static const char* const unicode_name = "harness_\xc3\xa9t\xc3\xa9_\xe5\x85\x89.tpb";
     static const char* const names[2] = {"harness_golden.tpb", NULL};
     size_t size = 0;
-    unsigned char* golden = read_golden("tiny_store_v4.bin", &size);
+    unsigned char* golden = read_golden("tiny_store_v5.bin", &size);
     tp_store *store = NULL, *copy = NULL;
     const void* blob;
     size_t blob_size = 0;
@@ -359,10 +369,12 @@ void test_golden_store_files(void) {
 /* Every truncated prefix and every byte changed in two ways is refused (or, for bytes the loader may
    accept, loads into a store that answers finitely); another format version is a version error. */
 void test_golden_store_bad_blobs(void) {
-    static const char* const older[4] = {"tiny_store_v2.bin", "tetrahedron_outer_cells_v2.bin", "tiny_store_v3.bin",
-                                         "tetrahedron_outer_cells_v3.bin"};
+    static const char* const older[7] = {"tiny_store_v2.bin", "tetrahedron_outer_cells_v2.bin", "tiny_store_v3.bin",
+                                         "tetrahedron_outer_cells_v3.bin", "tiny_store_v4.bin",
+                                         "tetrahedron_outer_cells_v4.bin", "tiny_store_scene_v4.bin"};
+    static const unsigned long older_version[7] = {2, 2, 3, 3, 4, 4, 4};
     size_t size = 0, cut, at;
-    unsigned char* bytes = read_golden("tiny_store_v4.bin", &size);
+    unsigned char* bytes = read_golden("tiny_store_v5.bin", &size);
     tp_store* store = NULL;
     int refused = 1, safe = 1, f;
     if (!bytes) return;
@@ -407,19 +419,99 @@ void test_golden_store_bad_blobs(void) {
     repair_checksum(bytes, size);
     EXPECT_STATUS(tp_store_load(bytes, size, &store), TP_ERROR_VERSION);
     CHECK(strstr(tp_last_error(), "rebuild") != NULL && mentions_number(tp_last_error(), 7));
-    bytes[8] = 4;
+    bytes[8] = 5;
     repair_checksum(bytes, size);
     EXPECT_OK(tp_store_load(bytes, size, &store));
     tp_store_release(store);
     store = NULL;
     free(bytes);
-    /* Stores of formats 2 and 3, as earlier libraries wrote them. */
-    for (f = 0; f < 4; ++f) {
+    /* Stores of formats 2, 3 and 4, as earlier libraries wrote them. */
+    for (f = 0; f < 7; ++f) {
         bytes = read_golden(older[f], &size);
         if (!bytes) continue;
         EXPECT_STATUS(tp_store_load(bytes, size, &store), TP_ERROR_VERSION);
-        CHECK(mentions_number(tp_last_error(), f < 2 ? 2 : 3));
+        CHECK(mentions_number(tp_last_error(), older_version[f]));
         CHECK(store == NULL);
         free(bytes);
+    }
+}
+
+/* The golden store in every SH encoding, layout and position encoding: what info says, the decoded SH
+   within the encoding's bound of the data (exact where it is halves), exactly that at each probe, and
+   the rebuilt layout refused as unsupported by this library. */
+void test_golden_store_encodings(void) {
+    static const struct {
+        const char* file;
+        uint32_t encoding, layout, quantized;
+    } goldens[8] = {
+        {"tiny_store_half_compact_quantized_v5.bin", TP_SH_ENCODING_HALF, TP_LAYOUT_COMPACT, 1},
+        {"tiny_store_unorm8_fast_v5.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_FAST, 0},
+        {"tiny_store_unorm8_compact_quantized_v5.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_COMPACT, 1},
+        {"tiny_store_half_l1_fast_v5.bin", TP_SH_ENCODING_HALF_L1, TP_LAYOUT_FAST, 0},
+        {"tiny_store_half_l1_compact_quantized_v5.bin", TP_SH_ENCODING_HALF_L1, TP_LAYOUT_COMPACT, 1},
+        {"tiny_store_unorm8_l1_fast_quantized_v5.bin", TP_SH_ENCODING_UNORM8_L1, TP_LAYOUT_FAST, 1},
+        {"tiny_store_unorm8_l1_compact_v5.bin", TP_SH_ENCODING_UNORM8_L1, TP_LAYOUT_COMPACT, 0},
+        {"tiny_store_unorm8_rebuilt_quantized_v5.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_REBUILT, 1}};
+    /* The 8-bit codes' steps (sqrt(3) / 127, sqrt(15) / 2 / 127, sqrt(5) / 170) and the ratio ranges' ends. */
+    static const double step[9] = {0, 0.013638195, 0.013638195, 0.013638195, 0.015247966, 0.015247966,
+                                   0.013153341, 0.015247966, 0.015247966};
+    static const double ratio_max[9] = {0, 1.7320508, 1.7320508, 1.7320508, 1.9364917, 1.9364917, 2.2360680, 1.9364917,
+                                        1.9364917};
+    int g, k;
+    uint32_t j;
+    for (g = 0; g < 8; ++g) {
+        size_t size = 0, i;
+        unsigned char* bytes = read_golden(goldens[g].file, &size);
+        tp_store* store = NULL;
+        tp_store_info info;
+        uint64_t parts = 0;
+        int within = 1, exact_at_probes = 1, l1 = goldens[g].encoding == TP_SH_ENCODING_HALF_L1 ||
+                                                  goldens[g].encoding == TP_SH_ENCODING_UNORM8_L1;
+        int unorm8 = goldens[g].encoding == TP_SH_ENCODING_UNORM8 || goldens[g].encoding == TP_SH_ENCODING_UNORM8_L1;
+        if (!bytes) continue;
+        if (goldens[g].layout == TP_LAYOUT_REBUILT) {
+            EXPECT_STATUS(tp_store_load(bytes, size, &store), TP_ERROR_UNSUPPORTED);
+            CHECK(strstr(tp_last_error(), "rebuilt") != NULL && store == NULL);
+            free(bytes);
+            continue;
+        }
+        EXPECT_OK(tp_store_load(bytes, size, &store));
+        free(bytes);
+        if (!store) continue;
+        memset(&info, 0, sizeof info);
+        info.struct_size = sizeof info;
+        EXPECT_OK(tp_store_get_info(store, &info));
+        CHECK(info.format_version == 5 && info.sh_encoding == goldens[g].encoding && info.layout == goldens[g].layout);
+        CHECK(info.quantized_positions == goldens[g].quantized);
+        CHECK(((info.flags & TP_BUILD_COMPACT) != 0) == (goldens[g].layout == TP_LAYOUT_COMPACT));
+        for (i = 0; i < 16; ++i) parts += info.section_bytes[i];
+        CHECK(parts == info.bytes && info.bytes == size);
+        CHECK(info.section_bytes[TP_STORE_SECTION_POSITIONS] == (goldens[g].quantized ? 4u * 6u : 4u * 12u));
+        CHECK(info.section_bytes[TP_STORE_SECTION_INPUT_REMAP] == 5u * 2u); /* one probe merged */
+        for (k = 0; k < 3; ++k)
+            CHECK(goldens[g].quantized ? info.position_step[k] > 0.0 && info.position_step[k] < 2e-5
+                                       : info.position_step[k] == 0.0);
+        for (j = 0; j < 5; ++j) {
+            float decoded[27], out[27], p[3];
+            const uint32_t stored = kProbeOfInput[j];
+            EXPECT_OK(tp_store_probe_sh(store, j, decoded));
+            for (k = 0; k < 27; ++k) {
+                const int c = k % 9;
+                const double value = golden_radiance_sh(stored, k), l0 = golden_radiance_sh(stored, k - c);
+                if (l1 && c >= 4)
+                    within &= decoded[k] == 0.0f;
+                else if (!unorm8 || c == 0)
+                    within &= decoded[k] == (float)value;
+                else
+                    within &= fabs(decoded[k] - value) <= l0 * (0.5 * step[c] + ratio_max[c] / 1024) * (1 + 1e-6);
+            }
+            /* At the probe's corner (exact in both position encodings): its decoded SH exactly. */
+            world(p, stored == 1, stored == 2, stored == 3);
+            EXPECT_OK(tp_store_interpolate(store, p, NULL, out));
+            for (k = 0; k < 27; ++k) exact_at_probes &= out[k] == decoded[k];
+        }
+        CHECK(within);
+        CHECK(exact_at_probes);
+        tp_store_release(store);
     }
 }

@@ -147,6 +147,7 @@ int main(int argc, char** argv) {
     test_golden_store_queries_and_errors();
     test_golden_store_files();
     test_golden_store_bad_blobs();
+    test_golden_store_encodings();
 #ifdef TP_HARNESS_RUNTIME_ONLY
     test_runtime_library_refuses_bake_time();
 #else
@@ -155,6 +156,7 @@ int main(int argc, char** argv) {
     test_store_build_progress();
     test_store_queries();
     test_store_info_and_struct_size();
+    test_store_encodings_and_quantization();
     test_store_blobs_and_files();
     test_store_without_extrapolation();
     test_batch_options();

@@ -74,6 +74,7 @@ void test_golden_store_answers(void);
 void test_golden_store_queries_and_errors(void);
 void test_golden_store_files(void);
 void test_golden_store_bad_blobs(void);
+void test_golden_store_encodings(void);
 /* runtime_library.c: what only the run-time library does (refuse to build, bake, hold scenes). */
 void test_runtime_library_refuses_bake_time(void);
 
@@ -81,6 +82,7 @@ void test_runtime_library_refuses_bake_time(void);
 void test_store_build_errors(void);
 void test_store_build_progress(void);
 void test_store_info_and_struct_size(void);
+void test_store_encodings_and_quantization(void);
 void test_small_sets(void);
 void test_store_queries(void);
 void test_store_without_extrapolation(void);

@@ -87,7 +87,7 @@ void test_store_info_and_struct_size(void) {
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
     EXPECT_OK(tp_store_blob(store, &blob, &size));
-    CHECK(info.format_version == 4);
+    CHECK(info.format_version == 5);
     CHECK(info.dimension == 3);
     CHECK(info.input_probes == CLOUD + 3);
     CHECK(info.probes == CLOUD);
@@ -225,4 +225,83 @@ void test_small_sets(void) {
             tp_store_release(store);
         }
     }
+}
+
+/* Format 5's build options: each SH encoding at float and quantised positions. info reports the
+   encoding, the quantisation and the bytes of each part (adding up to the blob); an input probe reads
+   its decoded SH (band 2 zero in the L1 encodings, L0 within half rounding) and, at float positions, a
+   query at it returns exactly that; an older tp_build_options (ending at `scene`) builds half floats at
+   float positions; an unknown encoding is refused. */
+void test_store_encodings_and_quantization(void) {
+    static float positions[3 * CLOUD], sh[27 * CLOUD];
+    static const uint64_t record_bytes[4] = {64, 32, 32, 16}; /* fast layout, by TP_SH_ENCODING_* */
+    uint64_t bytes[4][2];
+    uint32_t encoding, quantize;
+    tp_build_options options;
+    tp_store* store = NULL;
+    tp_store_info info;
+    make_cloud(positions, sh, CLOUD);
+    for (encoding = 0; encoding < 4; ++encoding) {
+        for (quantize = 0; quantize < 2; ++quantize) {
+            const int l1 = encoding == TP_SH_ENCODING_HALF_L1 || encoding == TP_SH_ENCODING_UNORM8_L1;
+            uint64_t parts = 0;
+            int i, k, decoded_ok = 1, exact_at_probes = 1;
+            tp_build_options_init(&options);
+            options.sh_encoding = encoding;
+            options.quantize_positions = quantize;
+            store = NULL;
+            EXPECT_OK(tp_store_build(positions, 0, sh, 0, CLOUD, &options, &store));
+            if (!store) continue;
+            info = info_of(store);
+            bytes[encoding][quantize] = info.bytes;
+            CHECK(info.sh_encoding == encoding && info.quantized_positions == quantize);
+            CHECK(info.layout == TP_LAYOUT_FAST && info.probes == CLOUD);
+            for (k = 0; k < 16; ++k) parts += info.section_bytes[k];
+            CHECK(parts == info.bytes);
+            CHECK(info.section_bytes[TP_STORE_SECTION_SH] == CLOUD * record_bytes[encoding]);
+            CHECK(info.section_bytes[TP_STORE_SECTION_POSITIONS] == CLOUD * (quantize ? 6u : 12u));
+            CHECK(info.section_bytes[TP_STORE_SECTION_NORMALS] == info.hull_probes * (quantize ? 4u : 12u));
+            CHECK(info.section_bytes[TP_STORE_SECTION_INPUT_REMAP] == 0); /* nothing merged */
+            CHECK(info.hull_probes >= 8 && info.hull_probes < CLOUD);
+            for (k = 0; k < 3; ++k)
+                CHECK(quantize ? info.position_step[k] > 2.0 / 65535 * 0.99 && info.position_step[k] < 2.0 / 65535 * 1.01
+                               : info.position_step[k] == 0.0);
+            for (i = 0; i < CLOUD; ++i) {
+                float decoded[27], out[27];
+                EXPECT_OK(tp_store_probe_sh(store, (uint32_t)i, decoded));
+                for (k = 0; k < 27; ++k) {
+                    if (l1 && k % 9 >= 4) decoded_ok &= decoded[k] == 0.0f;
+                    if (k % 9 == 0 || encoding == TP_SH_ENCODING_HALF)
+                        decoded_ok &= fabs(decoded[k] - sh[27 * i + k]) <= sh_tolerance(sh[27 * i + k]);
+                }
+                if (quantize) continue; /* the stored probe moved (within half a step) */
+                EXPECT_OK(tp_store_interpolate(store, positions + 3 * i, NULL, out));
+                for (k = 0; k < 27; ++k) exact_at_probes &= out[k] == decoded[k];
+            }
+            CHECK(decoded_ok);
+            CHECK(exact_at_probes);
+            tp_store_release(store);
+        }
+    }
+    CHECK(bytes[TP_SH_ENCODING_UNORM8_L1][1] < bytes[TP_SH_ENCODING_UNORM8][1]);
+    CHECK(bytes[TP_SH_ENCODING_UNORM8][1] < bytes[TP_SH_ENCODING_HALF][1]);
+    CHECK(bytes[TP_SH_ENCODING_HALF][1] < bytes[TP_SH_ENCODING_HALF][0]);
+
+    /* An older struct that ends at `scene`: what lies beyond is never read. */
+    tp_build_options_init(&options);
+    options.struct_size = (uint32_t)(offsetof(tp_build_options, scene) + sizeof(options.scene));
+    options.sh_encoding = 99;
+    options.quantize_positions = 1;
+    store = NULL;
+    EXPECT_OK(tp_store_build(positions, 0, sh, 0, CLOUD, &options, &store));
+    if (store) {
+        info = info_of(store);
+        CHECK(info.sh_encoding == TP_SH_ENCODING_HALF && info.quantized_positions == 0);
+        tp_store_release(store);
+    }
+    tp_build_options_init(&options);
+    options.sh_encoding = 4;
+    store = NULL;
+    EXPECT_STATUS(tp_store_build(positions, 0, sh, 0, CLOUD, &options, &store), TP_ERROR_INVALID_ARGUMENT);
+    CHECK(store == NULL && strstr(tp_last_error(), "sh_encoding") != NULL);
 }

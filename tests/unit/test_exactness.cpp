@@ -42,8 +42,8 @@ constexpr int kScale = 8;
 constexpr int kScale = 1;
 #endif
 
-const uint32_t kLayouts[] = {0u, kFlagCompact};
-const char* layout_name(uint32_t flags) { return (flags & kFlagCompact) ? "compact" : "fast"; }
+const uint32_t kLayouts[] = {0u, TP_BUILD_COMPACT};
+const char* layout_name(uint32_t flags) { return (flags & TP_BUILD_COMPACT) ? "compact" : "fast"; }
 
 // Collects failures and reports the first few (one Catch assertion per property and set: millions
 // of CHECKs would dominate the run time).
@@ -405,9 +405,9 @@ TEST_CASE("the fast and compact layouts give the same cell and probes, and the s
         sets.push_back(exactness::named(families::dense_room_in_a_level(54), "dense room in a level"));
     for (const ProbeSet& set : sets) {
         const Built fast = exactness::build(set, 0, kDefaultMergeTolerance);
-        const Built compact = exactness::build(set, kFlagCompact, kDefaultMergeTolerance);
-        REQUIRE((compact.store->header().flags & kFlagCompact) != 0);
-        REQUIRE((fast.store->header().flags & kFlagCompact) == 0);
+        const Built compact = exactness::build(set, TP_BUILD_COMPACT, kDefaultMergeTolerance);
+        REQUIRE(compact.store->header().layout == kLayoutCompact);
+        REQUIRE(fast.store->header().layout == kLayoutFast);
         REQUIRE(fast.store->header().cell_count == compact.store->header().cell_count);
         const auto points = world_queries(set, 3000 / kScale, 55);
         Failures failures;

@@ -605,15 +605,15 @@ TEST_CASE("builder: probes are stored along a space-filling curve, cells too", "
     CHECK(cells / (d.inner_cell_count - 2) < given / (d.probe_count() - 1) / 4);
 }
 
-TEST_CASE("builder: TP_BUILD_COMPACT is accepted and sets kFlagCompact; the flag bits are the store's", "[builder]") {
+TEST_CASE("builder: TP_BUILD_COMPACT is accepted and sets the compact layout; the other flag bits are the store's", "[builder]") {
     const std::vector<float> p = families::random_cloud(30, 12).positions;
     STATIC_REQUIRE(TP_BUILD_NO_EXTRAPOLATION == tetprobe::kFlagNoExtrapolation);
     STATIC_REQUIRE(TP_BUILD_INDEX32 == tetprobe::kFlagIndex32);
-    STATIC_REQUIRE(TP_BUILD_COMPACT == tetprobe::kFlagCompact);
     for (uint32_t flags = 0; flags < 8; ++flags) {
         const StoreData d = build(p, flags);
         INFO("flags " << flags);
-        REQUIRE(d.flags == flags);
+        REQUIRE(d.flags == (flags & ~uint32_t(TP_BUILD_COMPACT)));
+        REQUIRE(d.layout == ((flags & TP_BUILD_COMPACT) ? tetprobe::kLayoutCompact : tetprobe::kLayoutFast));
     }
     // The compact layout is a layout only: the same cells.
     REQUIRE(build(p, TP_BUILD_COMPACT).cell_vertices == build(p).cell_vertices);

@@ -14,13 +14,20 @@ from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c
 from .errors import Error, Status
 
 #: The library version this package was written for; major.minor must match the loaded library.
-PACKAGE_VERSION = (0, 6, 0)
+PACKAGE_VERSION = (0, 7, 0)
 
 SH_FLOATS = 27
 
 BUILD_NO_EXTRAPOLATION = 1
 BUILD_INDEX32 = 2
 BUILD_COMPACT = 4
+#: TP_SH_ENCODING_* by the names Store.build takes.
+SH_ENCODINGS = {"half": 0, "unorm8": 1, "half_l1": 2, "unorm8_l1": 3}
+#: TP_LAYOUT_* by name.
+LAYOUTS = {"fast": 0, "compact": 1, "rebuilt": 2}
+#: TP_STORE_SECTION_* by name, in index order (the keys of Store.info()["section_bytes"]).
+STORE_SECTIONS = ("header", "positions", "normals", "sh", "probe_source", "input_remap", "cells", "grid",
+                  "occlusion", "leak_offsets", "leak_edges", "padding")
 BATCH_CHAIN_HINTS = 1
 BAKE_NO_CULLING = 1
 CELL_INNER = 0
@@ -49,7 +56,7 @@ class BuildOptions(Structure):
     _fields_ = [("struct_size", c_uint32), ("flags", c_uint32), ("merge_tolerance", c_double),
                 ("flat_tolerance", c_double), ("progress", ProgressFn), ("progress_user", c_void_p),
                 ("occlusion", c_void_p), ("occlusion_stride", c_size_t), ("occlusion_lights", c_uint32),
-                ("scene", c_void_p)]
+                ("scene", c_void_p), ("sh_encoding", c_uint32), ("quantize_positions", c_uint32)]
 
 
 class StoreInfo(Structure):
@@ -58,7 +65,9 @@ class StoreInfo(Structure):
                 ("cells", c_uint32), ("inner_cells", c_uint32), ("outer_cells", c_uint32),
                 ("index_bits", c_uint32), ("flags", c_uint32), ("grid", c_uint32 * 3), ("bytes", c_uint64),
                 ("origin", c_double * 3), ("bounds_min", c_float * 3), ("bounds_max", c_float * 3),
-                ("occlusion_lights", c_uint32), ("leak_edges", c_uint32)]
+                ("occlusion_lights", c_uint32), ("leak_edges", c_uint32), ("layout", c_uint32),
+                ("sh_encoding", c_uint32), ("quantized_positions", c_uint32), ("hull_probes", c_uint32),
+                ("position_step", c_double * 3), ("section_bytes", c_uint64 * 16)]
 
 
 class BatchOptions(Structure):

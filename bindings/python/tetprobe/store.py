@@ -28,13 +28,19 @@ class Store(NativeHandle):
 
     @classmethod
     def build(cls, positions, sh=None, *, compact=False, extrapolate=True, index32=False, merge_tolerance=None,
-              flat_tolerance=None, progress=None, scene=None, occlusion=None, occlusion_lights=None):
+              flat_tolerance=None, progress=None, scene=None, occlusion=None, occlusion_lights=None,
+              sh_encoding="half", quantize_positions=False):
         """Builds a store from probe positions[N, 3] and their SH sh[N, 27] (None = all zeros).
 
         positions: float32 world units (other number dtypes are converted), one row per probe; any row
         stride. sh: 27 float32 per probe, channel-major [r0..r8, g0..g8, b0..b8] in the order L00, L1-1,
-        L10, L11, L2-2, L2-1, L20, L21, L22 (radiance, not pre-convolved); the store keeps them as half
-        floats. Duplicate and near-duplicate probes are merged (the first given survives, SH averaged).
+        L10, L11, L2-2, L2-1, L20, L21, L22 (radiance, not pre-convolved). sh_encoding says how the store
+        keeps them: "half" (27 half floats), "unorm8" (L0 as halves, the rest as 8-bit ratios to L0 over
+        the range a non-negative radiance reaches), or "half_l1" / "unorm8_l1" (band 2 dropped: queries
+        return zeros there). quantize_positions=True stores positions in 16 bits per axis over the
+        probes' bounds (quantised first, so the cells are exactly Delaunay for the stored positions and a
+        query at a stored probe weighs it exactly 1; a stored probe moves at most half of
+        info()["position_step"] per axis; probes that quantise to one point merge). Duplicate and near-duplicate probes are merged (the first given survives, SH averaged).
         compact=True writes the compact layout (the smallest blob: no neighbour section, rebuilt when
         the store is loaded); its answers are the fast layout's (same cells, weights within 1e-6).
         extrapolate=False builds no outer cells (queries outside the hull raise Error(OUTSIDE));
@@ -52,8 +58,12 @@ class Store(NativeHandle):
             coefficients, sh_stride, _ = rows(sh, SH_FLOATS, "sh")
             if coefficients.shape[0] != points.shape[0]:
                 raise ValueError("sh has %d rows for %d positions" % (coefficients.shape[0], points.shape[0]))
+        if sh_encoding not in _native.SH_ENCODINGS:
+            raise ValueError("sh_encoding must be one of %s (got %r)" % (", ".join(_native.SH_ENCODINGS), sh_encoding))
         options = _native.BuildOptions()
         check(lib.tp_build_options_init(ctypes.byref(options)))
+        options.sh_encoding = _native.SH_ENCODINGS[sh_encoding]
+        options.quantize_positions = 1 if quantize_positions else 0
         options.flags = (0 if extrapolate else _native.BUILD_NO_EXTRAPOLATION) | \
                         (_native.BUILD_INDEX32 if index32 else 0) | \
                         (_native.BUILD_COMPACT if compact else 0)
@@ -107,12 +117,17 @@ class Store(NativeHandle):
 
     def info(self):
         """Counts and layout as a dict: probes, input_probes, merged_probes, cells, inner_cells,
-        outer_cells, index_bits (16 or 32), bytes (the blob's size), format_version (4), dimension of
+        outer_cells, index_bits (16 or 32), bytes (the blob's size), format_version (5), dimension of
         the probe set (0 point, 1 line, 2 flat, 3 general), flags (TP_BUILD_* bits of the blob;
         BUILD_INDEX32 whenever it uses 32-bit indices), compact (True for the compact layout),
         extrapolation, grid (cold-start grid cells along x, y, z), origin (the local origin, world
         units, float64), bounds_min and bounds_max (world units, float32 values), occlusion_lights
-        (mixed lights with occlusion probes, 0-4) and leak_edges (probe pairs stored for leak control)."""
+        (mixed lights with occlusion probes, 0-4), leak_edges (probe pairs stored for leak control),
+        layout ("fast", "compact" or "rebuilt"), sh_encoding ("half", "unorm8", "half_l1", "unorm8_l1"),
+        quantized_positions, position_step (per axis: the largest gap between stored position values,
+        0.0 for float positions), hull_probes, and section_bytes: a dict of the blob's bytes by part
+        (header, positions, normals, sh, probe_source, input_remap, cells, grid, occlusion, leak_offsets,
+        leak_edges, padding), which add up to bytes."""
         info = _native.StoreInfo()
         info.struct_size = ctypes.sizeof(info)
         check(lib.tp_store_get_info(self._live(), ctypes.byref(info)))
@@ -136,6 +151,12 @@ class Store(NativeHandle):
             "bounds_max": tuple(info.bounds_max),
             "occlusion_lights": info.occlusion_lights,
             "leak_edges": info.leak_edges,
+            "layout": {v: k for k, v in _native.LAYOUTS.items()}.get(info.layout, info.layout),
+            "sh_encoding": {v: k for k, v in _native.SH_ENCODINGS.items()}.get(info.sh_encoding, info.sh_encoding),
+            "quantized_positions": bool(info.quantized_positions),
+            "position_step": tuple(info.position_step),
+            "hull_probes": info.hull_probes,
+            "section_bytes": {name: info.section_bytes[i] for i, name in enumerate(_native.STORE_SECTIONS)},
         }
 
     def probe_sh(self, probe):
