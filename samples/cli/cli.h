@@ -37,10 +37,21 @@ using ScenePtr = std::unique_ptr<tp_scene, SceneRelease>;
 
 StorePtr load_store(const std::string& path);
 // flags: TP_BUILD_* (e.g. TP_BUILD_COMPACT), on top of the library's default options.
+// How a store is built beyond its probes: TP_BUILD_* flags and tp_build_options' format-5 choices.
+struct BuildChoices {
+    uint32_t flags = 0;
+    uint32_t sh_encoding = TP_SH_ENCODING_HALF;
+    bool quantize_positions = false;
+};
 StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,
-                     uint32_t flags = 0);
-// "compact" or "fast": the layout of a store's blob (TP_BUILD_COMPACT in its flags).
+                     const BuildChoices& choices = BuildChoices());
+// "fast", "compact" or "rebuilt": the layout of a store's blob (tp_store_info.layout).
 const char* store_layout(const tp_store_info& info);
+// "half", "unorm8", "half_l1" or "unorm8_l1" (tp_store_info.sh_encoding); and back (false if unknown).
+const char* sh_encoding_name(uint32_t encoding);
+bool sh_encoding_from_name(const std::string& name, uint32_t* encoding);
+// The names of tp_store_info.section_bytes' entries, by TP_STORE_SECTION_*.
+extern const char* const kStoreSectionNames[TP_STORE_SECTION_COUNT];
 tp_store_info store_info(const tp_store* store);
 
 // Probe positions (3 per probe) and SH (27 per probe, or empty) read from a CSV or JSON file.

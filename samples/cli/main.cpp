@@ -9,9 +9,11 @@ namespace {
 
 const char* const kUsage =
     "usage:\n"
-    "  tetprobe build INPUT.(csv|json) -o STORE [--compact]\n"
+    "  tetprobe build INPUT.(csv|json) -o STORE [--compact] [--sh-encoding E] [--quantize-positions]\n"
     "                                                csv: x,y,z[,27 sh] per line; json: {\"probes\": [[x,y,z],...],\n"
-    "                                                \"sh\": [[27 floats],...]}; --compact: the smallest blob\n"
+    "                                                \"sh\": [[27 floats],...]}; --compact: no neighbours stored;\n"
+    "                                                E: half (default), unorm8, half_l1 or unorm8_l1;\n"
+    "                                                --quantize-positions: 16 bits per axis\n"
     "  tetprobe info STORE [--json]\n"
     "  tetprobe query STORE x y z [--weights] [--json]\n"
     "  tetprobe bake SCENE.json -o STORE [--rays N] [--bounces N] [--seed N] [--threads N]\n"

@@ -10,17 +10,24 @@
 namespace cli {
 
 int command_build(const std::vector<std::string>& args) {
-    const Arguments a = parse_arguments(args, {"-o"}, {"--compact"});
+    const Arguments a = parse_arguments(args, {"-o", "--sh-encoding"}, {"--compact", "--quantize-positions"});
     if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("build takes INPUT and -o STORE");
+    BuildChoices choices;
+    choices.flags = a.has("--compact") ? TP_BUILD_COMPACT : 0u;
+    choices.quantize_positions = a.has("--quantize-positions");
+    const std::string encoding = a.value("--sh-encoding", "half");
+    if (!sh_encoding_from_name(encoding, &choices.sh_encoding))
+        throw UsageError("--sh-encoding takes half, unorm8, half_l1 or unorm8_l1 (not '" + encoding + "')");
     const ProbeFile input = read_probe_file(a.positional[0]);
     if (input.positions.empty()) throw Failure(a.positional[0] + ": no probes");
-    StorePtr store = build_store(input.positions, input.sh, false, a.has("--compact") ? TP_BUILD_COMPACT : 0u);
+    StorePtr store = build_store(input.positions, input.sh, false, choices);
     const std::string out = a.value("-o", "");
     check(tp_store_save_file(store.get(), out.c_str()), "saving the store");
     const tp_store_info info = store_info(store.get());
-    std::printf("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %" PRIu64 " bytes, %s layout%s\n",
+    std::printf("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %" PRIu64 " bytes, %s layout, %s SH%s%s\n",
                 out.c_str(), info.probes, info.merged_probes, info.cells, info.inner_cells, info.outer_cells,
-                info.bytes, store_layout(info), input.sh.empty() ? " (no SH given: zeros)" : "");
+                info.bytes, store_layout(info), sh_encoding_name(info.sh_encoding),
+                info.quantized_positions ? ", quantised positions" : "", input.sh.empty() ? " (no SH given: zeros)" : "");
     return 0;
 }
 
@@ -46,6 +53,13 @@ int command_info(const std::vector<std::string>& args) {
     j["origin"] = {i.origin[0], i.origin[1], i.origin[2]};
     j["bounds_min"] = {i.bounds_min[0], i.bounds_min[1], i.bounds_min[2]};
     j["bounds_max"] = {i.bounds_max[0], i.bounds_max[1], i.bounds_max[2]};
+    j["sh_encoding"] = sh_encoding_name(i.sh_encoding);
+    j["quantized_positions"] = i.quantized_positions != 0;
+    j["position_step"] = {i.position_step[0], i.position_step[1], i.position_step[2]};
+    j["hull_probes"] = i.hull_probes;
+    nlohmann::ordered_json sections;
+    for (uint32_t s = 0; s < TP_STORE_SECTION_COUNT; ++s) sections[kStoreSectionNames[s]] = i.section_bytes[s];
+    j["section_bytes"] = sections;
     if (a.has("--json")) {
         std::printf("%s\n", j.dump(2).c_str());
         return 0;

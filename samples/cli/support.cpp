@@ -21,10 +21,12 @@ StorePtr load_store(const std::string& path) {
 }
 
 StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,
-                     uint32_t flags) {
+                     const BuildChoices& choices) {
     tp_build_options options;
     check(tp_build_options_init(&options), "tp_build_options_init");
-    options.flags |= flags;
+    options.flags |= choices.flags;
+    options.sh_encoding = choices.sh_encoding;
+    options.quantize_positions = choices.quantize_positions ? 1u : 0u;
     ProgressBar bar{"build"};
     if (show_progress) {
         options.progress = &ProgressBar::callback;
@@ -46,7 +48,25 @@ tp_store_info store_info(const tp_store* store) {
     return info;
 }
 
-const char* store_layout(const tp_store_info& info) { return (info.flags & TP_BUILD_COMPACT) ? "compact" : "fast"; }
+const char* store_layout(const tp_store_info& info) {
+    return info.layout == TP_LAYOUT_COMPACT ? "compact" : (info.layout == TP_LAYOUT_REBUILT ? "rebuilt" : "fast");
+}
+
+namespace {
+const char* const kShEncodingNames[4] = {"half", "unorm8", "half_l1", "unorm8_l1"};  // by TP_SH_ENCODING_*
+}  // namespace
+
+const char* sh_encoding_name(uint32_t encoding) { return encoding < 4 ? kShEncodingNames[encoding] : "unknown"; }
+
+bool sh_encoding_from_name(const std::string& name, uint32_t* encoding) {
+    for (uint32_t e = 0; e < 4; ++e)
+        if (name == kShEncodingNames[e]) return *encoding = e, true;
+    return false;
+}
+
+const char* const kStoreSectionNames[TP_STORE_SECTION_COUNT] = {
+    "header", "positions", "normals", "sh", "probe_source", "input_remap", "cells", "grid", "occlusion",
+    "leak_offsets", "leak_edges", "padding"};
 
 void write_file_atomically(const std::string& path, const void* data, size_t size) {
     const std::string temporary = path + ".tmp" + std::to_string(static_cast<long>(getpid()));

@@ -40,7 +40,7 @@ def test_build_from_csv_then_info_and_query(tmp_path):
     info = json.loads(run("info", store_path, "--json").stdout)
     assert info["probes"] == 40 and info["cells"] == info["inner_cells"] + info["outer_cells"]
     assert info["bytes"] == store_path.stat().st_size
-    assert info["format_version"] == 4 and info["layout"] == "fast"
+    assert info["format_version"] == 5 and info["layout"] == "fast"
     text = run("info", store_path).stdout
     assert "probes:" in text and "index_bits:" in text and 'layout:         "fast"' in text
 
@@ -52,6 +52,19 @@ def test_build_from_csv_then_info_and_query(tmp_path):
     assert compact_info["layout"] == "compact" and compact_info["bytes"] < info["bytes"]
     assert compact_info["cells"] == info["cells"]
     assert 'layout:         "compact"' in run("info", compact_path).stdout
+
+    small_path = tmp_path / "small.tpb"
+    out = run("build", csv, "-o", small_path, "--compact", "--sh-encoding", "unorm8_l1", "--quantize-positions").stdout
+    assert "compact layout, unorm8_l1 SH, quantised positions" in out
+    expected_small = Store.build(positions, sh, compact=True, sh_encoding="unorm8_l1", quantize_positions=True)
+    assert Store.load(str(small_path)).to_bytes() == expected_small.to_bytes()
+    small_info = json.loads(run("info", small_path, "--json").stdout)
+    assert small_info["sh_encoding"] == "unorm8_l1" and small_info["quantized_positions"] is True
+    assert sum(small_info["section_bytes"].values()) == small_info["bytes"] == small_path.stat().st_size
+    assert small_info["section_bytes"]["sh"] == 40 * 15 and small_info["section_bytes"]["positions"] == 40 * 6
+    assert all(0 < step < 4.0 / 65535 for step in small_info["position_step"])
+    refused = run("build", csv, "-o", tmp_path / "no.tpb", "--sh-encoding", "float8", ok=False)
+    assert refused.returncode == 2 and "--sh-encoding" in refused.stderr and not (tmp_path / "no.tpb").exists()
 
     point = positions[:4].mean(axis=0)
     answer = json.loads(run("query", store_path, *point, "--weights", "--json").stdout)

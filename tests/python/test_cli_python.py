@@ -69,13 +69,14 @@ def probe_csv(path, n=40, seed=5, header=True):
 def test_build_info_and_query_match_the_c_tool(tmp_path):
     positions = probe_csv(tmp_path / "probes.csv")
     store = tmp_path / "store.tpb"
-    for extra in ([], ["--compact"]):
+    for extra in ([], ["--compact"], ["--sh-encoding", "unorm8", "--quantize-positions"]):
         c, python = both(tmp_path, "build", tmp_path / "probes.csv", "-o", store, *extra, files=[store])
         assert c[0] == 0 and c[3][0] is not None
         assert_same(c, python)
-    run([C_TOOL], ["build", tmp_path / "probes.csv", "-o", store])
-    for flags in ([], ["--json"]):
-        assert_same(*both(tmp_path, "info", store, *flags))
+    for extra in (["--sh-encoding", "half_l1", "--quantize-positions"], []):
+        run([C_TOOL], ["build", tmp_path / "probes.csv", "-o", store, *extra])
+        for flags in ([], ["--json"]):
+            assert_same(*both(tmp_path, "info", store, *flags))
     inside = positions[:4].mean(axis=0)
     points = [inside, positions[7], [-50.0, 2.0, 2.0], [1e9, -3.0, 0.5]]
     for point in points:

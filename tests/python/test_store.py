@@ -327,7 +327,8 @@ def test_compact_layout_answers_like_the_fast_layout(index32):
     assert not fast_info["compact"] and compact_info["compact"]
     assert compact_info["flags"] & tetprobe._native.BUILD_COMPACT
     assert not fast_info["flags"] & tetprobe._native.BUILD_COMPACT
-    assert fast_info["format_version"] == 4 and compact_info["format_version"] == 4
+    assert fast_info["format_version"] == 5 and compact_info["format_version"] == 5
+    assert fast_info["layout"] == "fast" and compact_info["layout"] == "compact"
     assert compact_info["bytes"] < fast_info["bytes"]
     for key in ("probes", "cells", "inner_cells", "outer_cells", "index_bits"):
         assert compact_info[key] == fast_info[key], key
@@ -425,8 +426,8 @@ def test_older_format_blobs_are_refused_with_a_version_error():
     positions, sh = random_set(50, 241)
     for compact in (False, True):
         blob = bytearray(Store.build(positions, sh, compact=compact).to_bytes())
-        assert struct.unpack_from("<I", blob, 8)[0] == 4
-        for version in (3, 2, 1, 5, 99):
+        assert struct.unpack_from("<I", blob, 8)[0] == 5
+        for version in (4, 3, 2, 1, 6, 99):
             old = bytearray(blob)
             struct.pack_into("<I", old, 8, version)  # nothing else fixed: not even the checksum
             with pytest.raises(Error) as raised:
@@ -443,3 +444,75 @@ def test_info_flags_are_the_blobs_build_flags():
     closed = Store.build(positions, sh, compact=True, extrapolate=False, index32=True).info()
     assert closed["flags"] == (tetprobe._native.BUILD_COMPACT | tetprobe._native.BUILD_NO_EXTRAPOLATION |
                                tetprobe._native.BUILD_INDEX32)
+
+
+# The 8-bit codes' step and the larger end of the ratio range per coefficient (capi/tetprobe.h,
+# docs/store_format.md): coefficient i of a non-negative radiance decodes within c0 (step / 2 + max / 1024).
+UNORM8_STEP = np.array([0, *[np.sqrt(3) / 127] * 3, *[np.sqrt(15) / 2 / 127] * 2, np.sqrt(5) / 170,
+                        *[np.sqrt(15) / 2 / 127] * 2])
+UNORM8_MAX = np.array([0, *[np.sqrt(3)] * 3, *[np.sqrt(15) / 2] * 2, np.sqrt(5), *[np.sqrt(15) / 2] * 2])
+RECORD_BYTES = {"half": 64, "unorm8": 32, "half_l1": 32, "unorm8_l1": 16}  # fast layout, per probe
+
+
+def radiance_sh(n, seed):
+    """SH of non-negative radiance: per channel L0 in [0.5, 2], every other coefficient L0 times a ratio
+    inside half its range."""
+    rng = np.random.default_rng(seed)
+    sh = np.zeros((n, 27), np.float32)
+    for c in range(3):
+        l0 = rng.uniform(0.5, 2.0, n)
+        sh[:, 9 * c] = l0
+        for i in range(1, 9):
+            sh[:, 9 * c + i] = l0 * rng.uniform(-0.5, 0.5, n) * UNORM8_MAX[i]
+    return sh
+
+
+@pytest.mark.parametrize("encoding", ["half", "unorm8", "half_l1", "unorm8_l1"])
+@pytest.mark.parametrize("quantize", [False, True])
+def test_sh_encodings_and_quantized_positions(encoding, quantize):
+    positions, _ = random_set(300, 261)
+    sh = radiance_sh(300, 262)
+    store = Store.build(positions, sh, sh_encoding=encoding, quantize_positions=quantize)
+    info = store.info()
+    assert info["format_version"] == 5 and info["layout"] == "fast"
+    assert info["sh_encoding"] == encoding and info["quantized_positions"] == quantize
+    sections = info["section_bytes"]
+    assert list(sections) == list(tetprobe._native.STORE_SECTIONS)
+    assert sum(sections.values()) == info["bytes"] == len(store.to_bytes())
+    assert sections["sh"] == 300 * RECORD_BYTES[encoding]
+    assert sections["positions"] == 300 * (6 if quantize else 12)
+    assert sections["normals"] == info["hull_probes"] * (4 if quantize else 12) and info["hull_probes"] > 0
+    assert sections["input_remap"] == 0 and sections["probe_source"] == 300 * 2
+    step = np.array(info["position_step"])
+    if quantize:
+        assert np.all((step > 0) & (step < 1.01 / 65535))  # the box is within [0, 1]^3
+    else:
+        assert np.all(step == 0)
+
+    # Each probe reads its decoded SH: within the encoding's bound of the input, band 2 zero for L1.
+    decoded = np.array([store.probe_sh(i) for i in range(300)])
+    l1 = encoding.endswith("_l1")
+    for k in range(27):
+        i, l0 = k % 9, sh[:, k - k % 9].astype(np.float64)
+        if l1 and i >= 4:
+            assert np.all(decoded[:, k] == 0)
+        elif encoding.startswith("half") or i == 0:
+            assert np.array_equal(decoded[:, k], half(sh[:, k]))
+        else:
+            assert np.all(np.abs(decoded[:, k] - sh[:, k]) <= l0 * (UNORM8_STEP[i] / 2 + UNORM8_MAX[i] / 1024))
+
+    # Float positions: a query at a probe returns its decoded SH exactly. Quantised ones moved the probes
+    # by at most half a step (1e-5 here): at the inputs the answers barely change (more only in slivers).
+    out, _ = store.interpolate(positions)
+    if not quantize:
+        assert np.array_equal(out, decoded)
+    else:
+        exact = Store.build(positions, sh, sh_encoding=encoding)
+        assert np.median(np.abs(out - exact.interpolate(positions)[0])) < 1e-4
+    assert Store.load(store.to_bytes()).to_bytes() == store.to_bytes()
+
+
+def test_bad_sh_encoding_is_refused():
+    positions, sh = random_set(20, 263)
+    with pytest.raises(ValueError, match="sh_encoding"):
+        Store.build(positions, sh, sh_encoding="float8")

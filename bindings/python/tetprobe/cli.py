@@ -30,9 +30,11 @@ from .store import Store
 
 USAGE = (
     "usage:\n"
-    "  tetprobe build INPUT.(csv|json) -o STORE [--compact]\n"
+    "  tetprobe build INPUT.(csv|json) -o STORE [--compact] [--sh-encoding E] [--quantize-positions]\n"
     "                                                csv: x,y,z[,27 sh] per line; json: {\"probes\": [[x,y,z],...],\n"
-    "                                                \"sh\": [[27 floats],...]}; --compact: the smallest blob\n"
+    "                                                \"sh\": [[27 floats],...]}; --compact: no neighbours stored;\n"
+    "                                                E: half (default), unorm8, half_l1 or unorm8_l1;\n"
+    "                                                --quantize-positions: 16 bits per axis\n"
     "  tetprobe info STORE [--json]\n"
     "  tetprobe query STORE x y z [--weights] [--json]\n"
     "  tetprobe bake SCENE.json -o STORE [--rays N] [--bounces N] [--seed N] [--threads N]\n"
@@ -484,19 +486,24 @@ def load_store(path):
 
 
 def command_build(args):
-    a = Arguments(args, {"-o"}, {"--compact"})
+    a = Arguments(args, {"-o", "--sh-encoding"}, {"--compact", "--quantize-positions"})
     if len(a.positional) != 1 or not a.has("-o"):
         raise UsageError("build takes INPUT and -o STORE")
+    encoding = a.value("--sh-encoding", "half")
+    if encoding not in _native.SH_ENCODINGS:
+        raise UsageError("--sh-encoding takes half, unorm8, half_l1 or unorm8_l1 (not '%s')" % encoding)
     positions, sh = read_probe_file(a.positional[0])
     if len(positions) == 0:
         raise Failure(a.positional[0] + ": no probes")
-    store = checked("building the store", Store.build, positions, sh, compact=a.has("--compact"))
+    store = checked("building the store", Store.build, positions, sh, compact=a.has("--compact"),
+                    sh_encoding=encoding, quantize_positions=a.has("--quantize-positions"))
     path = a.value("-o", "")
     checked("saving the store", store.save, path)
     info = store.info()
-    out("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %u bytes, %s layout%s\n" % (
+    out("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %u bytes, %s layout, %s SH%s%s\n" % (
         path, info["probes"], info["merged_probes"], info["cells"], info["inner_cells"], info["outer_cells"],
-        info["bytes"], "compact" if info["compact"] else "fast", "" if sh is not None else " (no SH given: zeros)"))
+        info["bytes"], info["layout"], info["sh_encoding"], ", quantised positions" if info["quantized_positions"] else "",
+        "" if sh is not None else " (no SH given: zeros)"))
     return 0
 
 
@@ -507,12 +514,14 @@ def command_info(args):
     i = load_store(a.positional[0]).info()
     fields = {key: i[key] for key in ("format_version", "dimension", "probes", "input_probes", "merged_probes", "cells",
                                       "inner_cells", "outer_cells", "index_bits")}
-    fields["layout"] = "compact" if i["compact"] else "fast"
+    fields["layout"] = i["layout"]
     fields["extrapolation"] = i["extrapolation"]
     fields["grid"] = list(i["grid"])
     fields["bytes"] = i["bytes"]
     for key in ("origin", "bounds_min", "bounds_max"):
         fields[key] = list(i[key])
+    for key in ("sh_encoding", "quantized_positions", "position_step", "hull_probes", "section_bytes"):
+        fields[key] = list(i[key]) if key == "position_step" else i[key]
     if a.has("--json"):
         out(dump_json(fields, 2) + "\n")
         return 0
