@@ -28,6 +28,9 @@ namespace TetProbe
         public UIntPtr occlusion_stride;
         public uint occlusion_lights;
         public IntPtr scene;
+        // Format 5.
+        public uint sh_encoding;
+        public uint quantize_positions;
     }
 
     [StructLayout(LayoutKind.Sequential)]
@@ -51,6 +54,21 @@ namespace TetProbe
         public Vector3 bounds_max;
         public uint occlusion_lights;  // format 4: mixed lights with occlusion probes (0-4)
         public uint leak_edges;        // probe pairs kept for leak control
+        // Format 5.
+        public uint layout;
+        public uint sh_encoding;
+        public uint quantized_positions;
+        public uint hull_probes;
+        public double position_step_x, position_step_y, position_step_z;
+        public NativeSectionBytes section_bytes;
+    }
+
+    /// <summary>tp_store_info.section_bytes: bytes of each part of the blob, by TP_STORE_SECTION_*.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativeSectionBytes
+    {
+        public ulong header, positions, normals, sh, probe_source, input_remap, cells, grid, occlusion, leak_offsets,
+                     leak_edges, padding, unused12, unused13, unused14, unused15;
     }
 
     /// <summary>tp_batch_options: flags (TP_BATCH_*) and the threads a batch query may use (0 or 1 = the caller's).</summary>

@@ -20,6 +20,19 @@ namespace TetProbe
         public bool Compact;
         public long Bytes;
         public Vector3 BoundsMin, BoundsMax;
+        /// <summary>How the cells are kept (Fast, Compact; Rebuilt is refused by this library).</summary>
+        public StoreLayout Layout;
+        /// <summary>How the SH are kept (BuildOptions.ShEncoding).</summary>
+        public ShEncoding ShEncoding;
+        /// <summary>Positions in 16 bits per axis (BuildOptions.QuantizePositions).</summary>
+        public bool QuantizedPositions;
+        /// <summary>Quantised positions: the largest gap between stored values per axis (a stored probe lies within
+        /// half of it of its input); zero for float positions.</summary>
+        public Vector3 PositionStep;
+        /// <summary>Probes on the hull (those whose normals the store keeps).</summary>
+        public int HullProbes;
+        /// <summary>Bytes of each part of the blob; they add up to Bytes.</summary>
+        public StoreSectionBytes SectionBytes;
     }
 
     /// <summary>Where one query ended and what it blended (tp_location).</summary>
@@ -53,6 +66,12 @@ namespace TetProbe
         public double MergeTolerance;
         /// <summary>A set thinner than this fraction of its diagonal is treated as flat (or as a line).</summary>
         public double FlatTolerance;
+        /// <summary>How the SH are kept: Half (the default, 54 bytes a probe), Unorm8 (L0 in halves, the rest as 8-bit
+        /// ratios to L0: 30 bytes), or the L1 variants (band 2 dropped: zeros in queries).</summary>
+        public ShEncoding ShEncoding = ShEncoding.Half;
+        /// <summary>Positions in 16 bits per axis over the probes' bounds, quantised before the tessellation (so a query at a
+        /// stored probe still weighs it exactly 1); probes that quantise to one point merge.</summary>
+        public bool QuantizePositions;
 
         public BuildOptions()
         {
@@ -68,6 +87,8 @@ namespace TetProbe
                             (Compact ? NativeMethods.BuildCompact : 0u) | (Index32 ? NativeMethods.BuildIndex32 : 0u);
             options.merge_tolerance = MergeTolerance;
             options.flat_tolerance = FlatTolerance;
+            options.sh_encoding = (uint)ShEncoding;
+            options.quantize_positions = QuantizePositions ? 1u : 0u;
             return options;
         }
     }
@@ -143,11 +164,15 @@ namespace TetProbe
                     Flags = n.flags, Extrapolation = (n.flags & NativeMethods.BuildNoExtrapolation) == 0,
                     Compact = (n.flags & NativeMethods.BuildCompact) != 0, Bytes = (long)n.bytes,
                     BoundsMin = n.bounds_min, BoundsMax = n.bounds_max,
+                    Layout = (StoreLayout)n.layout, ShEncoding = (ShEncoding)n.sh_encoding,
+                    QuantizedPositions = n.quantized_positions != 0,
+                    PositionStep = new Vector3((float)n.position_step_x, (float)n.position_step_y, (float)n.position_step_z),
+                    HullProbes = (int)n.hull_probes, SectionBytes = new StoreSectionBytes(n.section_bytes),
                 };
             }
         }
 
-        /// <summary>The stored (half-precision) SH of input probe `probe`.</summary>
+        /// <summary>The stored SH of input probe `probe`, decoded (what a query at the probe returns).</summary>
         public SphericalHarmonicsL2 ProbeSh(int probe)
         {
             return NativeProxy.ProbeSh(Live(), probe);

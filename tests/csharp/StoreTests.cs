@@ -39,6 +39,26 @@ static class StoreTests
                                                     new BuildOptions { MergeTolerance = 0.5 }))
             Tests.Check(merged.Info.MergedProbes == 1, "MergeTolerance reaches the build (" + merged.Info.MergedProbes + " merged)");
 
+        // Format 5: each SH encoding, with and without quantised positions, reaches the build and the info.
+        Tests.Check(defaults.ShEncoding == ShEncoding.Half && !defaults.QuantizePositions, "half SH, float positions by default");
+        foreach (ShEncoding encoding in new[] { ShEncoding.Half, ShEncoding.Unorm8, ShEncoding.HalfL1, ShEncoding.Unorm8L1 })
+            foreach (bool quantize in new[] { false, true })
+                using (ProbeStore small = ProbeStore.Build(positions, sh, new BuildOptions { ShEncoding = encoding, QuantizePositions = quantize,
+                                                                                              Compact = true }))
+                {
+                    ProbeStoreInfo info = small.Info;
+                    bool l1 = encoding == ShEncoding.HalfL1 || encoding == ShEncoding.Unorm8L1;
+                    SphericalHarmonicsL2 stored = small.ProbeSh(7);
+                    Tests.Check(info.FormatVersion == 5 && info.ShEncoding == encoding && info.QuantizedPositions == quantize &&
+                                info.Layout == StoreLayout.Compact && info.SectionBytes.Total == info.Bytes &&
+                                info.SectionBytes.Positions == positions.Length * (quantize ? 6 : 12) && info.HullProbes > 0 &&
+                                (quantize ? info.PositionStep.x > 0 : info.PositionStep.x == 0) &&
+                                Math.Abs(stored[0, 0] - sh[7][0, 0]) <= 1e-3f * Math.Abs(sh[7][0, 0]) &&
+                                (!l1 || stored[1, 6] == 0),
+                                encoding + (quantize ? " with quantised positions" : "") + ": " + info.Bytes + " bytes, " +
+                                info.SectionBytes.Sh + " of SH");
+                }
+
         float last = -1;
         int reports = 0;
         var progress = new Reporter(f => { last = f; ++reports; });

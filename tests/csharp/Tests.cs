@@ -370,7 +370,7 @@ static class Tests
         using (ProbeStore compact = ProbeStore.Build(positions, sh, true, true))
         {
             ProbeStoreInfo fi = fast.Info, ci = compact.Info;
-            Check(fi.FormatVersion == 4 && ci.FormatVersion == 4, "format version 4");
+            Check(fi.FormatVersion == 5 && ci.FormatVersion == 5, "format version 5");
             Check(!fi.Compact && ci.Compact && (ci.Flags & 4u) != 0 && (fi.Flags & 4u) == 0, "compact flag in info");
             Check(ci.Bytes < fi.Bytes, "compact blob is smaller (" + ci.Bytes + " < " + fi.Bytes + ")");
             Check(ci.Cells == fi.Cells && ci.InnerCells == fi.InnerCells, "same cells in both layouts");
@@ -453,10 +453,10 @@ static class Tests
             Throws<ArgumentOutOfRangeException>(() => fast.Interpolate(many, null, chained, -1), "negative threads");
             Throws<ArgumentException>(() => fast.Weights(many, null, new uint[4], chainedWeights), "short probes array");
 
-            // Format-2 and format-3 blobs: only the version field changed (not even the checksum); refused as a version.
+            // Format-2 to format-4 blobs: only the version field changed (not even the checksum); refused as a version.
             byte[] blob = fast.Save();
-            Check(BitConverter.ToUInt32(blob, 8) == 4, "format version at byte 8");
-            foreach (byte version in new byte[] { 2, 3 })
+            Check(BitConverter.ToUInt32(blob, 8) == 5, "format version at byte 8");
+            foreach (byte version in new byte[] { 2, 3, 4 })
             {
                 var old = (byte[])blob.Clone();
                 old[8] = version; old[9] = 0; old[10] = 0; old[11] = 0;
@@ -531,5 +531,5 @@ static class Tests
 
 static class NativeProxyVersion
 {
-    public const uint Major = 0, Minor = 6;
+    public const uint Major = 0, Minor = 7;
 }
