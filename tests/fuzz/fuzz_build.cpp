@@ -1,9 +1,12 @@
 // libFuzzer target: building a store from arbitrary point sets must never crash (TetGen must never
 // see input that kills it), and every store that builds, written in the fast or the compact layout
-// (mode bit 32), must load and answer every probe's position with valid weights. Decisions are exact
+// (mode bit 32), in each SH encoding (the probe count mod 4), with float or quantised positions (mode
+// bit 128), must load and answer every probe's position with valid weights. Decisions are exact
 // orientation predicates on the stored floats, so every input probe whose survivor is stored exactly
 // at the probe's own local position (not merged from elsewhere, not moved onto a fitted plane or
-// line) is answered by that probe alone, with weight exactly 1, on every set that builds. Coordinates
+// line, not moved by quantisation) is answered by that probe alone, with weight exactly 1, on every
+// set that builds; and so is every stored probe at its own stored position (where the world position
+// rounds back to it), with its decoded SH exactly. Coordinates
 // come either from small integers times a scale plus an offset, so that duplicates, lines, planes and
 // lattices are common, or (mode bit 16) from raw float bits (denormals next to 1e19, tiny gaps).
 // Mode bit 64 adds scene data: occlusion bytes and a wall through the middle of the set (leak
@@ -44,7 +47,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (int c = 0; c < 27; ++c) sh[p * 27 + c] = float((p * 7 + c) % 11);
 
     tetprobe::BuildSettings settings;
-    settings.flags = (mode & 32) ? tetprobe::kFlagCompact : 0u;
+    settings.flags = (mode & 32) ? TP_BUILD_COMPACT : 0u;
+    settings.sh_encoding = tetprobe::ShEncoding(count % tetprobe::kShEncodingCount);
+    settings.quantize_positions = (mode & 128) != 0;
     const bool scene_data = mode & 64;
     std::vector<uint8_t> occlusion(count * 4);
     for (size_t b = 0; b < occlusion.size(); ++b) occlusion[b] = uint8_t(b * 37 + (mode >> 1));
@@ -83,7 +88,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     } catch (const tetprobe::Error&) {
         __builtin_trap();
     }
-    if (((store->header().flags & tetprobe::kFlagCompact) != 0) != ((mode & 32) != 0)) __builtin_trap();
+    const tetprobe::StoreHeader& h = store->header();
+    if ((h.layout == tetprobe::kLayoutCompact) != ((mode & 32) != 0) || h.sh_encoding != settings.sh_encoding ||
+        (h.position_encoding == tetprobe::kPositionsUnorm16) != settings.quantize_positions)
+        __builtin_trap();
     // Every query succeeds with weights in [0, 1] summing to 1; a probe stored where it was given
     // weighs exactly 1 at its own position.
     int32_t hint = -1;
@@ -111,6 +119,27 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (int k = 0; k < 4; ++k)
             if (loc.probes[k] == survivor) w += loc.weights[k];
         if (w != 1.0f) __builtin_trap();
+    }
+    // Every stored probe, queried at its own stored position: weight exactly 1, its decoded SH exactly.
+    for (uint32_t j = 0; j < h.probe_count; ++j) {
+        const float* stored = store->probe_position(j);
+        float world[3];
+        bool exact = true;
+        for (int k = 0; k < 3; ++k) {
+            world[k] = float(h.origin[k] + double(stored[k]));
+            exact &= float(double(world[k]) - h.origin[k]) == stored[k];
+        }
+        if (!exact) continue;
+        const tetprobe::Location loc = store->locate(world, -1);
+        float w = 0;
+        for (int k = 0; k < 4; ++k)
+            if (loc.probes[k] == j) w += loc.weights[k];
+        if (loc.status != tetprobe::Status::ok || w != 1.0f) __builtin_trap();
+        float answer[27], decoded[27];
+        if (store->interpolate(world, nullptr, answer) != tetprobe::Status::ok) __builtin_trap();
+        store->probe_sh(j, decoded);
+        for (int k = 0; k < 27; ++k)
+            if (answer[k] != decoded[k]) __builtin_trap();
     }
     return 0;
 }

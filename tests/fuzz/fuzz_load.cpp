@@ -1,10 +1,11 @@
-// libFuzzer target: blob loading (format 4, fast and compact layouts, with and without the occlusion
-// and leak-control sections; older formats are refused by version) must reject or accept any bytes
-// safely, and a store that loads must answer queries without reading out of bounds. The first byte
-// picks a mode: bit 0 repairs the checksum first, so mutations reach the deeper checks (counts,
-// indices, floats, orientations, neighbours, leak lists); bit 1 flips the layout flag (kFlagCompact)
-// before that, so one seed of either layout reaches the other's loader; bits 2 and 3 flip the
-// occlusion and leak-control flags the same way.
+// libFuzzer target: blob loading (format 5: every layout, SH encoding and position encoding, with and
+// without the occlusion and leak-control sections; older formats are refused by version, the rebuilt
+// layout as unsupported) must reject or accept any bytes safely, and a store that loads must answer
+// queries without reading out of bounds. The first byte picks a mode: bit 0 repairs the checksum first,
+// so mutations reach the deeper checks (counts, indices, floats, orientations, neighbours, leak lists,
+// maps); bits 1 and 7 flip the header's layout by 1 and 2 (fast, compact, rebuilt), bits 4 and 5 its SH
+// encoding, bit 6 its position encoding, so that one seed reaches every other kind's loader; bits 2
+// and 3 flip the occlusion and leak-control flags the same way.
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_format.h"
@@ -18,13 +19,19 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (size < 1) return 0;
     const bool repair_checksum = data[0] & 1;
     std::vector<uint8_t> blob(data + 1, data + size);
-    if ((data[0] & 14) && blob.size() >= sizeof(tetprobe::StoreHeader)) {
-        uint32_t flags;
-        std::memcpy(&flags, blob.data() + offsetof(tetprobe::StoreHeader, flags), sizeof flags);
-        if (data[0] & 2) flags ^= tetprobe::kFlagCompact;
-        if (data[0] & 4) flags ^= tetprobe::kFlagOcclusion;
-        if (data[0] & 8) flags ^= tetprobe::kFlagLeakControl;
-        std::memcpy(blob.data() + offsetof(tetprobe::StoreHeader, flags), &flags, sizeof flags);
+    auto flip = [&](size_t offset, uint32_t bits) {
+        uint32_t word;
+        std::memcpy(&word, blob.data() + offset, sizeof word);
+        word ^= bits;
+        std::memcpy(blob.data() + offset, &word, sizeof word);
+    };
+    if (blob.size() >= sizeof(tetprobe::StoreHeader)) {
+        using tetprobe::StoreHeader;
+        flip(offsetof(StoreHeader, flags),
+             ((data[0] & 4) ? tetprobe::kFlagOcclusion : 0u) | ((data[0] & 8) ? tetprobe::kFlagLeakControl : 0u));
+        flip(offsetof(StoreHeader, layout), ((data[0] & 2) ? 1u : 0u) | ((data[0] & 128) ? 2u : 0u));
+        flip(offsetof(StoreHeader, sh_encoding), (data[0] >> 4) & 3u);
+        flip(offsetof(StoreHeader, position_encoding), (data[0] & 64) ? 1u : 0u);
     }
     if (repair_checksum && blob.size() >= tetprobe::kHeaderSize) {
         uint64_t sum = tetprobe::store_checksum(blob.data(), blob.size());
@@ -34,8 +41,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {
         store = tetprobe::Store::load(blob.data(), blob.size());
     } catch (const tetprobe::Error& e) {
-        // Only these two, and a blob that names another format version is always a version error.
-        if (e.status() != tetprobe::Status::invalid_blob && e.status() != tetprobe::Status::version) __builtin_trap();
+        // Only these three, and a blob that names another format version is always a version error.
+        if (e.status() != tetprobe::Status::invalid_blob && e.status() != tetprobe::Status::version &&
+            e.status() != tetprobe::Status::unsupported)
+            __builtin_trap();
         return 0;
     }
     if (store->header().format_version != tetprobe::kStoreFormatVersion) __builtin_trap();
@@ -46,6 +55,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const float probes[][3] = {{0.5f, 0.5f, 0.5f}, {-1.f, 2.f, 0.25f}, {3.f, -2.f, 7.f}, {0.f, 0.f, 0.f}, {1e9f, -1e9f, 1e9f}};
     int32_t hint = -1;
     float sh[27];
+    // Every probe's decoded SH is finite.
+    for (uint32_t j = 0; j < h.probe_count; ++j) {
+        store->probe_sh(j, sh);
+        for (float x : sh)
+            if (!std::isfinite(x)) __builtin_trap();
+    }
     for (const auto& f : probes) {
         float p[3];
         for (int k = 0; k < 3; ++k) p[k] = float(h.origin[k] + lo[k] + f[k] * (hi[k] - lo[k]));

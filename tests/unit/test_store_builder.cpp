@@ -15,6 +15,7 @@
 #include "bake/store_builder.h"
 #include "capi/tetprobe.h"
 #include "core/error.h"
+#include "core/position_quantization.h"
 #include "core/store.h"
 #include "core/store_data.h"
 #include "core/store_format.h"
@@ -41,8 +42,10 @@
 void exactinit(int verbose, int noexact, int nofilter, double maxx, double maxy, double maxz);
 double orient3dexact(double* pa, double* pb, double* pc, double* pd);
 double orient2dexact(double* pa, double* pb, double* pc);
+double insphereexact(double* pa, double* pb, double* pc, double* pd, double* pe);
 
 using tetprobe::BuildSettings;
+using tetprobe::SectionEntry;
 using tetprobe::kNone32;
 using tetprobe::kOuter32;
 using tetprobe::StoreData;
@@ -50,9 +53,12 @@ using Vec = Eigen::Vector3d;
 
 namespace {
 
-StoreData build(const std::vector<float>& positions, uint32_t flags = 0, const std::vector<float>* sh = nullptr) {
+StoreData build(const std::vector<float>& positions, uint32_t flags = 0, const std::vector<float>* sh = nullptr,
+                bool quantize = false, double merge_tolerance = tetprobe::kDefaultMergeTolerance) {
     BuildSettings settings;
     settings.flags = flags;
+    settings.quantize_positions = quantize;
+    settings.merge_tolerance = merge_tolerance;
     return tetprobe::build_store_data(positions.data(), 12, sh ? sh->data() : nullptr, 108, positions.size() / 3,
                                       settings);
 }
@@ -538,13 +544,26 @@ TEST_CASE("builder: origin is the centre of the bounding box and positions are l
 
 namespace {
 
+SectionEntry section_of(const std::vector<uint8_t>& blob, tetprobe::Section id) {
+    SectionEntry e;
+    std::memcpy(&e, blob.data() + sizeof(tetprobe::StoreHeader) + id * sizeof(SectionEntry), sizeof e);
+    return e;
+}
+
 // Builds `set` with SH, then shuffled and reversed copies, and requires the same store: positions,
-// normals, SH, cells, links, grid, origin, bit for bit; the remaps agree up to the permutation.
-void require_order_independent(const families::ProbeSet& set, uint32_t seed) {
+// normals, SH, cells, links, grid, origin, bit for bit; the remaps agree up to the permutation. The
+// blobs (quantised ones included) are the same bytes outside the probe maps and the checksum.
+void require_order_independent(const families::ProbeSet& set, uint32_t seed, bool quantize = false) {
     const size_t n = set.count();
     std::vector<float> sh(27 * n);
     for (size_t i = 0; i < sh.size(); ++i) sh[i] = float((i * 7919) % 1013) * 0.001f;
-    const StoreData a = build(set.positions, 0, &sh);
+    const StoreData a = build(set.positions, 0, &sh, quantize);
+    std::vector<uint8_t> blob_a;
+    for (const tetprobe::ShEncoding encoding : {tetprobe::kShHalf, tetprobe::kShUnorm8}) {
+        StoreData encoded = a;
+        encoded.sh_encoding = encoding;
+        blob_a = tetprobe::write_store_blob(encoded);
+    }
     std::mt19937 rng(seed);
     for (int trial = 0; trial < 4; ++trial) {
         std::vector<uint32_t> perm(n);  // shuffled input i is input perm[i]
@@ -556,8 +575,8 @@ void require_order_independent(const families::ProbeSet& set, uint32_t seed) {
             std::copy_n(&set.positions[3 * size_t(perm[i])], 3, &p[3 * i]);
             std::copy_n(&sh[27 * size_t(perm[i])], 27, &q[27 * i]);
         }
-        const StoreData b = build(p, 0, &q);
-        INFO(set.name << " trial " << trial);
+        const StoreData b = build(p, 0, &q, quantize);
+        INFO(set.name << " trial " << trial << (quantize ? ", quantised" : ""));
         for (int k = 0; k < 3; ++k) REQUIRE(a.origin[k] == b.origin[k]);
         REQUIRE(a.dimension == b.dimension);
         REQUIRE(a.axis == b.axis);
@@ -569,6 +588,19 @@ void require_order_independent(const families::ProbeSet& set, uint32_t seed) {
         REQUIRE(a.cell_neighbours == b.cell_neighbours);
         REQUIRE(a.grid_cells == b.grid_cells);
         for (size_t i = 0; i < n; ++i) REQUIRE(b.input_remap[i] == a.input_remap[perm[i]]);
+        StoreData encoded = b;
+        encoded.sh_encoding = tetprobe::kShUnorm8;
+        const std::vector<uint8_t> blob_b = tetprobe::write_store_blob(encoded);
+        REQUIRE(blob_a.size() == blob_b.size());
+        for (uint32_t s = 0; s < tetprobe::kSectionCount; ++s) {
+            if (s == tetprobe::kSectionProbeSource || s == tetprobe::kSectionInputRemap) continue;
+            const SectionEntry ea = section_of(blob_a, tetprobe::Section(s)), eb = section_of(blob_b, tetprobe::Section(s));
+            INFO("section " << s);
+            REQUIRE(ea.offset == eb.offset);
+            REQUIRE(ea.size == eb.size);
+            REQUIRE(std::memcmp(blob_a.data() + ea.offset, blob_b.data() + eb.offset, ea.size) == 0);
+        }
+        REQUIRE(std::memcmp(blob_a.data(), blob_b.data(), tetprobe::kChecksumOffset) == 0);  // the header up to its checksum
     }
 }
 
@@ -582,6 +614,154 @@ TEST_CASE("builder: the store does not depend on the order the probes are given 
     require_order_independent(families::tilted_plane_rounded(60, 9), 5);
     require_order_independent(families::racetrack(30), 6);
     require_order_independent(families::line(9), 7);
+    require_order_independent(families::random_cloud(300, 22, 10, 1e3), 8, true);
+    require_order_independent(families::lattice(5, 5, 5, 1, 3e-5, 5), 9, true);
+    require_order_independent(families::tilted_plane_rounded(60, 10), 10, true);
+}
+
+// ---- quantised positions
+
+namespace {
+
+// Violations of the empty-sphere property: inner facets whose opposite vertex in the neighbouring inner
+// cell lies strictly inside the cell's circumsphere, decided by TetGen's exact predicates on the
+// stored positions (a triangulation of the hull that is locally Delaunay everywhere is Delaunay).
+size_t delaunay_violations(const StoreData& d) {
+    exactinit(0, 0, 0, 1, 1, 1);
+    size_t violations = 0;
+    auto point = [&](uint32_t probe, double out[3]) {
+        for (int a = 0; a < 3; ++a) out[a] = d.positions[3 * size_t(probe) + a];
+    };
+    for (uint32_t c = 0; c < d.inner_cell_count; ++c) {
+        double p[5][3];
+        for (int k = 0; k < 4; ++k) point(d.cell_vertices[4 * size_t(c) + k], p[k]);
+        const double orientation = orient3dexact(p[0], p[1], p[2], p[3]);
+        for (int k = 0; k < 4; ++k) {
+            const uint32_t n = d.cell_neighbours[4 * size_t(c) + k];
+            if (n >= d.inner_cell_count) continue;
+            uint32_t opposite = kNone32;
+            for (int j = 0; j < 4; ++j) {
+                const uint32_t v = d.cell_vertices[4 * size_t(n) + j];
+                if (std::find(&d.cell_vertices[4 * size_t(c)], &d.cell_vertices[4 * size_t(c)] + 4, v) ==
+                    &d.cell_vertices[4 * size_t(c)] + 4)
+                    opposite = v;
+            }
+            point(opposite, p[4]);
+            // Shewchuk: insphere > 0 for a point inside when orient3d > 0; the product says so for either winding.
+            if (insphereexact(p[0], p[1], p[2], p[3], p[4]) * orientation > 0) ++violations;
+        }
+    }
+    return violations;
+}
+
+}  // namespace
+
+TEST_CASE("builder: quantised positions are on their grid, within half a step of their inputs, in a valid store", "[builder]") {
+    const std::vector<families::ProbeSet> sets = {
+        families::random_cloud(500, 41), families::random_cloud(300, 42, 10, 1e3), families::lattice(6, 6, 6, 1, 3e-5, 4),
+        families::plane(80, 43), families::tilted_plane_rounded(60, 44), families::line(9), families::racetrack(30),
+        families::dense_room_in_a_level(45), families::random_cloud(200, 46, 3.0, 1e4)};
+    for (const families::ProbeSet& set : sets) {
+        const StoreData d = build(set.positions, 0, nullptr, true);
+        INFO(set.name << ", dimension " << d.dimension);
+        REQUIRE(d.position_encoding == tetprobe::kPositionsUnorm16);
+        structure::check_layout_and_links(d);
+        structure::check_inner_orientation(d);
+        double gap[3], worst[3] = {0, 0, 0};
+        for (int a = 0; a < 3; ++a) gap[a] = tetprobe::position_max_gap(d.bounds_min[a], d.bounds_max[a]);
+        for (uint32_t j = 0; j < d.probe_count(); ++j) {
+            const uint32_t input = d.probe_source[j];
+            for (int a = 0; a < 3; ++a) {
+                const float stored = d.positions[3 * size_t(j) + a];
+                REQUIRE(tetprobe::quantize_position(stored, d.bounds_min[a], d.bounds_max[a]) == stored);
+                // A flat set's dropped coordinate (a line's other two) moved onto the fitted plane (line).
+                const bool moved_onto_the_set = (d.dimension == 2 && uint32_t(a) == d.axis) ||
+                                                (d.dimension == 1 && uint32_t(a) != d.axis);
+                if (moved_onto_the_set) continue;
+                const float given = float(double(set.positions[3 * size_t(input) + a]) - d.origin[a]);
+                worst[a] = std::max(worst[a], std::fabs(double(stored) - double(given)));
+            }
+        }
+        for (int a = 0; a < 3; ++a) {
+            INFO("axis " << a << ": moved at most " << worst[a] << ", step " << gap[a]);
+            REQUIRE(worst[a] <= 0.5 * gap[a]);
+        }
+        if (d.dimension == 3) REQUIRE(delaunay_violations(d) == 0);
+        // The data writes a blob that loads and decodes to the same floats.
+        const std::vector<uint8_t> blob = tetprobe::write_store_blob(d);
+        const std::unique_ptr<tetprobe::Store> store = tetprobe::Store::load(blob.data(), blob.size());
+        for (uint32_t j = 0; j < d.probe_count(); ++j)
+            REQUIRE(std::memcmp(store->probe_position(j), &d.positions[3 * size_t(j)], 3 * sizeof(float)) == 0);
+        if (set.name == "random")  // the probes did move: the bound is not vacuous
+            for (int a = 0; a < 3; ++a) CHECK(worst[a] > 0.3 * gap[a]);
+    }
+}
+
+TEST_CASE("builder: the cells are Delaunay for the quantised positions, not for the given ones", "[builder]") {
+    // A lattice jittered by about half a quantisation step: the given positions decide its ties one way,
+    // the quantised ones another. The quantised build triangulates what it stores.
+    const families::ProbeSet set = families::lattice(7, 7, 7, 1, 5e-5, 47);
+    const StoreData quantized = build(set.positions, 0, nullptr, true);
+    REQUIRE(delaunay_violations(quantized) == 0);
+    // The cells of the given positions, with those positions moved to the same grid afterwards, are not.
+    StoreData snapped = build(set.positions);
+    for (size_t i = 0; i < snapped.positions.size(); ++i)
+        snapped.positions[i] = tetprobe::quantize_position(snapped.positions[i], quantized.bounds_min[i % 3],
+                                                           quantized.bounds_max[i % 3]);
+    CHECK(delaunay_violations(snapped) > 0);
+}
+
+TEST_CASE("builder: probes that quantise to the same point are merged into the first, with the mean SH", "[builder]") {
+    // 200 probes and copies of 20 of them a quarter of a step away (distinct floats, which a float build
+    // with merge tolerance 0 keeps apart) that quantise to their originals' point. The grid is the
+    // builder's: the box of the local positions around the centre of the world bounds.
+    families::ProbeSet set = families::random_cloud(200, 48);
+    double lo[3], hi[3], origin[3];
+    float box_lo[3], box_hi[3];
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = hi[a] = set.positions[size_t(a)];
+        for (size_t i = 0; i < set.count(); ++i)
+            lo[a] = std::min(lo[a], double(set.positions[3 * i + a])), hi[a] = std::max(hi[a], double(set.positions[3 * i + a]));
+        origin[a] = 0.5 * (lo[a] + hi[a]);
+        box_lo[a] = float(lo[a] - origin[a]), box_hi[a] = float(hi[a] - origin[a]);
+    }
+    std::vector<uint32_t> copied;
+    for (uint32_t i = 0; i < 200 && copied.size() < 20; ++i) {
+        float world[3];
+        bool same_point = true, distinct = false;
+        for (int a = 0; a < 3; ++a) {
+            const float given = set.positions[3 * i + a], local = float(double(given) - origin[a]);
+            const float grid = tetprobe::quantize_position(local, box_lo[a], box_hi[a]);
+            const double quarter = 0.25 * tetprobe::position_max_gap(box_lo[a], box_hi[a]);
+            world[a] = float(origin[a] + double(grid) + (local < grid ? quarter : -quarter));
+            const float moved = float(double(world[a]) - origin[a]);
+            same_point &= tetprobe::quantize_position(moved, box_lo[a], box_hi[a]) == grid;
+            same_point &= world[a] > lo[a] && world[a] < hi[a];  // the bounds stay those of the originals
+            distinct |= world[a] != given;
+        }
+        if (!same_point || !distinct) continue;
+        set.add(world[0], world[1], world[2]);
+        copied.push_back(i);
+    }
+    REQUIRE(copied.size() == 20);
+    std::vector<float> sh(27 * set.count());
+    for (size_t i = 0; i < sh.size(); ++i) sh[i] = float(i % 97) * 0.01f;
+    REQUIRE(build(set.positions, 0, &sh, false, 0.0).probe_count() == 220);
+    const StoreData d = build(set.positions, 0, &sh, true, 0.0);
+    REQUIRE(d.probe_count() == 200);
+    REQUIRE(d.input_probe_count == 220);
+    for (uint32_t k = 0; k < 20; ++k) {
+        const uint32_t i = copied[k], stored = d.input_remap[200 + k];
+        REQUIRE(d.input_remap[i] == stored);
+        REQUIRE(d.probe_source[stored] == i);  // the first given survives
+        for (int c = 0; c < 27; ++c)
+            REQUIRE(d.sh[27 * size_t(stored) + c] == float((double(sh[27 * i + c]) + double(sh[27 * (200 + k) + c])) / 2));
+    }
+    // The blob keeps input_remap (something merged) and reports the merge.
+    const std::vector<uint8_t> blob = tetprobe::write_store_blob(d);
+    const std::unique_ptr<tetprobe::Store> store = tetprobe::Store::load(blob.data(), blob.size());
+    REQUIRE(store->header().input_probe_count - store->header().probe_count == 20);
+    REQUIRE(store->input_to_stored(205) == store->input_to_stored(copied[5]));
 }
 
 TEST_CASE("builder: probes are stored along a space-filling curve, cells too", "[builder]") {
