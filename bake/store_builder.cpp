@@ -305,6 +305,22 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         }
     }
 
+    // Probes that now coincide in the coordinates the run time decides a flat set (line) in are one
+    // probe: merged in reduced coordinates they could still differ by a rounding (or, quantised, by
+    // less than a step), and two probes at one point cannot both weigh 1 there.
+    if (shape.dimension == 1 || shape.dimension == 2) {
+        std::vector<Eigen::Vector3d> decided(groups.kept.size(), Eigen::Vector3d::Zero());
+        for (size_t j = 0; j < groups.kept.size(); ++j) {
+            const Eigen::Vector3d& p = local[groups.kept[j]];
+            if (shape.dimension == 1)
+                decided[j][0] = p[shape.line_axis()];
+            else
+                decided[j].head<2>() = shape.plane_coordinates(p);
+        }
+        const ProbeMerge coincident = merge_close_points(decided, 0.0);
+        if (coincident.merged_count() > 0) groups.apply(coincident);
+    }
+
     // Stored probes (and TetGen's input) in canonical order, whatever order the caller gave.
     {
         std::vector<uint32_t> by_rank(groups.kept.size());

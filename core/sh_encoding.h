@@ -20,9 +20,13 @@
 // ratio c_i / L is written as the code whose decoded value (the float expression above) is nearest
 // c_i, clamped to the codes 0..255. A channel whose half L0 is zero decodes to zero; one whose L0 is
 // negative (not a non-negative radiance) keeps its L0 and its ratios clamped to the range.
-// Bound (proven in test_sh_encoding.cpp's comment, tested there): for a non-negative radiance with
-// 2^-14 <= c_0 <= 65504, |decoded c_i - c_i| <= c_0 (step_i / 2 + max_i / 1024), max_i the larger end
-// of the range in magnitude, and |decoded c_0 - c_0| <= 2^-11 c_0 (the half rounding).
+// Bound, for a non-negative radiance with 2^-14 <= c_0 <= 65504: |decoded c_0 - c_0| <= 2^-11 c_0 (the
+// half rounding) and |decoded c_i - c_i| <= c_0 (step_i / 2 + max_i / 1024), max_i the larger end of the
+// range in magnitude. Why: with L the half of c_0 (|L - c_0| <= 2^-11 c_0) the ratio written is
+// r = c_i / L, within max_i 2^-11 (1 + 2^-10) of the true ratio (inside the range), so clamping it to
+// the range moves it no farther; the nearest code is within half a step of the clamped ratio, and
+// L (half step + that distance) <= c_0 (1 + 2^-11)(step / 2 + max 2^-11 (1 + 2^-10)) plus a few float
+// roundings of the decode, all below c_0 (step / 2 + max / 1024). Tested in test_sh_encoding.cpp.
 #pragma once
 
 #include "core/store_format.h"

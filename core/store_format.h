@@ -27,7 +27,7 @@
 //     bounds_max[k]]: the same float on every platform. The builder quantises first and tessellates the
 //     decoded positions, so the cells are exactly Delaunay for them. Normals int16 x 2 per hull probe,
 //     octahedral (core/octahedral_normal.h: u = max(q0 / 32767, -1), v likewise, folded below the
-//     equator, normalised in double, rounded to float): about 5e-5 radians from the builder's normal.
+//     equator, normalised in double, rounded to float): within 6e-5 radians of the builder's normal.
 // - cells [0, inner_cell_count) are inner cells with d+1 probes in vertex slots 0..d, positively
 //   oriented; cells [inner_cell_count, cell_count) are outer cells with d probes in slots 0..d-1
 //   (the hull facet, wound so that its outward side is positive) and kOuter in slot d. Unused slots

@@ -1,6 +1,8 @@
 // tetprobe_bench precision [--out DIR] [--quick] [--scene PATH]: part 2 of issue 8. SH float32 (the baked
 // floats blended with tetprobe's own weights, tp_store_weights) against half (tp_store_interpolate), fast
-// against compact layout, and the evaluation choices L1, ZH3 (from L1) and full L2, each without a window,
+// against compact layout, the 8-bit and L1 SH encodings of issue 17 (unorm8, half_l1, unorm8_l1 in the
+// fast layout; unorm8 with quantised positions in the compact one: the smallest L2 store), and the
+// evaluation choices L1, ZH3 (from L1) and full L2, each without a window,
 // with Sloan's window and with the smallest non-negative window. Orders (ZH3 included) and Sloan's window are
 // applied per query (tp_sh_eval_irradiance_ex on the blend); the non-negative window, which costs tens of
 // minimum searches, is applied once per probe (tp_sh_apply_options before the store is built). ZH3 and the
@@ -21,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 
@@ -37,10 +40,13 @@ void check(tp_status status, const char* what) {
     if (status != TP_OK) throw std::runtime_error(std::string(what) + ": " + tp_last_error());
 }
 
-tp_store* build_store(const MethodScene& s, const std::vector<float>& probe_sh, uint32_t flags) {
+tp_store* build_store(const MethodScene& s, const std::vector<float>& probe_sh, uint32_t flags, uint32_t sh_encoding,
+                      bool quantize_positions) {
     tp_build_options options;
     tp_build_options_init(&options);
     options.flags = flags;
+    options.sh_encoding = sh_encoding;
+    options.quantize_positions = quantize_positions ? 1u : 0u;
     tp_store* store = nullptr;
     check(tp_store_build(s.probes.data(), 0, probe_sh.data(), 0, s.probes.size() / 3, &options, &store), "tp_store_build");
     return store;
@@ -53,8 +59,8 @@ double store_bytes(const tp_store* store) {
     return double(info.bytes);
 }
 
-// How the SH of a point are obtained: from halves in a store (fast or compact) or from float SH blended
-// with the fast store's weights (tp_store_weights).
+// How the SH of a point are obtained: from a store in one SH encoding (fast, compact, or compact with
+// quantised positions) or from float SH blended with the fast store's weights (tp_store_weights).
 struct Storage {
     std::string precision, layout;
     double store_bytes_per_probe = 0;
@@ -63,16 +69,23 @@ struct Storage {
     std::function<void(const float*, int32_t*, float*)> interpolate;
 };
 
-// precision "float32" or "half", layout "fast" or "compact", over the given probe SH.
+// precision "float32" or a store's SH encoding ("half", "unorm8", "half_l1", "unorm8_l1"); layout
+// "fast", "compact" or "compact_quantized" (16-bit positions); over the given probe SH.
 Storage make_storage(const MethodScene& s, const std::string& precision, const std::string& layout,
                      const std::vector<float>& probe_sh) {
+    static const char* const encodings[4] = {"half", "unorm8", "half_l1", "unorm8_l1"};  // by TP_SH_ENCODING_*
+    uint32_t encoding = TP_SH_ENCODING_HALF;
+    for (uint32_t e = 0; e < 4; ++e)
+        if (precision == encodings[e]) encoding = e;
     Storage storage;
     storage.precision = precision;
     storage.layout = layout;
-    storage.store.reset(build_store(s, probe_sh, layout == "compact" ? TP_BUILD_COMPACT : 0), tp_store_release);
+    storage.store.reset(build_store(s, probe_sh, layout == "fast" ? 0u : TP_BUILD_COMPACT, encoding,
+                                    layout == "compact_quantized"),
+                        tp_store_release);
     const double probes = double(s.probes.size() / 3);
     tp_store* store = storage.store.get();
-    if (precision == "half") {
+    if (precision != "float32") {
         storage.store_bytes_per_probe = store_bytes(store) / probes;
         storage.interpolate = [store](const float* p, int32_t* hint, float* out) { tp_store_interpolate(store, p, hint, out); };
     } else {
@@ -168,15 +181,18 @@ RowResult bench_row(const MethodScene& s, const MethodSettings& settings, const 
     });
     if (sink == 12345.678f) std::printf(" ");
 
+    // float32 and half: L1 and ZH3 evaluated per query read 12 coefficients (the bytes of such a store);
+    // ZH3 applied per probe stores its band 2. The other encodings: the store's own bytes.
+    const bool adjusted = storage.precision == "float32" || storage.precision == "half";
     const double coefficient_bytes = storage.precision == "half" ? 2.0 : 4.0;
-    // L1 and ZH3 evaluated per query read 12 coefficients; ZH3 applied per probe stores its band 2.
     const double read_coefficients =
         e.options.order == TP_SH_ORDER_L1 || (e.options.order == TP_SH_ORDER_ZH3 && !e.per_probe) ? 12.0 : 27.0;
     RowResult r;
     r.rms = rms;
     r.squares = std::move(squares);
     r.ns = 1e9 * seconds / double(repetitions * frames);
-    r.bytes = storage.store_bytes_per_probe - 27.0 * coefficient_bytes + read_coefficients * coefficient_bytes;
+    r.bytes = adjusted ? storage.store_bytes_per_probe - 27.0 * coefficient_bytes + read_coefficients * coefficient_bytes
+                       : storage.store_bytes_per_probe;
     r.json["id"] = storage.precision + "_" + storage.layout + "_" + e.order_name + "_" + e.window_name;
     r.json["precision"] = storage.precision;
     r.json["layout"] = storage.layout;
@@ -272,9 +288,11 @@ Json bench_scene(const std::string& path, const MethodSettings& settings) {
             evaluations.push_back(e);
         }
 
+    const std::pair<const char*, const char*> storage_kinds[] = {
+        {"float32", "fast"},  {"half", "fast"},      {"half", "compact"},         {"unorm8", "fast"},
+        {"half_l1", "fast"}, {"unorm8_l1", "fast"}, {"unorm8", "compact_quantized"}};
     std::vector<RowResult> results;
-    results.reserve(3 * evaluations.size());
-    const std::pair<const char*, const char*> storage_kinds[] = {{"float32", "fast"}, {"half", "fast"}, {"half", "compact"}};
+    results.reserve(std::size(storage_kinds) * evaluations.size());
     for (const auto& kind : storage_kinds) {
         const Storage plain = make_storage(s, kind.first, kind.second, s.probe_sh);
         for (const Evaluation& e : evaluations) {

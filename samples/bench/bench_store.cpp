@@ -1,7 +1,8 @@
 // The store benchmark, through the C ABI: tetprobe's queries (coherent single, batch of 1,024 moving
 // objects on 1 and 2 threads, cold, teleport, outside the hull) next to the blend-only floor, a plain
 // float walk over the same mesh (plain_walk.h) and CGAL's exact locate with hint (cgal_peer.h), for
-// 1.5k, 10k and 65k probes; walk steps and fallbacks; bytes per probe of the fast and compact layouts;
+// 1.5k, 10k and 65k probes; walk steps and fallbacks; bytes per probe of the fast and compact layouts
+// in every SH encoding and position encoding, and the smallest L2 store part by part;
 // build time next to TetGen's own call; then the headline ratios against the targets of issue 7.
 // Prints markdown tables; every time is the median of several repetitions, all seeds are fixed, and
 // every method runs on the same probes and the same query points.
@@ -56,10 +57,13 @@ struct StoreDeleter {
 };
 using StorePtr = std::unique_ptr<tp_store, StoreDeleter>;
 
-StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, uint32_t flags) {
+StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, uint32_t flags,
+                     uint32_t sh_encoding = TP_SH_ENCODING_HALF, bool quantize_positions = false) {
     tp_build_options options;
     tp_build_options_init(&options);
     options.flags = flags;
+    options.sh_encoding = sh_encoding;
+    options.quantize_positions = quantize_positions ? 1u : 0u;
     tp_store* store = nullptr;
     if (tp_store_build(positions.data(), 0, sh.data(), 0, positions.size() / 3, &options, &store) != TP_OK) {
         std::fprintf(stderr, "tp_store_build: %s\n", tp_last_error());
@@ -305,7 +309,16 @@ struct SizeResult {
     size_t cgal_infinite = 0;
     tp_store_info fast{}, compact{};
     double build_ms = 0, build_compact_ms = 0, tetgen_ms = 0;
+    // Format 5: every SH encoding x position encoding in both layouts ([layout][encoding][quantised]), and
+    // the coherent single query on the fast layout in unorm8 and on the smallest L2 store.
+    tp_store_info encoded[2][4][2] = {};
+    double single_unorm8 = 0, single_smallest = 0;
 };
+
+const char* const kEncodingNames[4] = {"half", "unorm8", "half_l1", "unorm8_l1"};  // by TP_SH_ENCODING_*
+const char* const kSectionNames[TP_STORE_SECTION_COUNT] = {
+    "header and section table", "positions", "hull normals", "SH", "probe_source", "input_remap", "cells",
+    "start grid", "occlusion", "leak offsets", "leak edges", "alignment padding"};
 
 bool run_size(size_t n, SizeResult* r, float* sink) {
     r->probes = n;
@@ -338,7 +351,7 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
 
     BlobSh blob;
     if (!read_blob_sh(fast.get(), &blob)) {
-        std::fprintf(stderr, "the fast store's blob is not the format-3 layout this benchmark reads\n");
+        std::fprintf(stderr, "the fast store's blob is not the format-5 half-SH layout this benchmark reads\n");
         return false;
     }
     r->floor = time_blend_floor(fast.get(), blob, paths, sink);
@@ -362,6 +375,17 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
 
     r->single = time_coherent_single(fast.get(), paths, sink);
     r->single_compact = time_coherent_single(compact.get(), paths, sink);
+    for (int layout = 0; layout < 2; ++layout)
+        for (uint32_t encoding = 0; encoding < 4; ++encoding)
+            for (int quantized = 0; quantized < 2; ++quantized) {
+                const StorePtr store = build_store(positions, sh, layout ? TP_BUILD_COMPACT : 0u, encoding, quantized != 0);
+                if (!store) return false;
+                r->encoded[layout][encoding][quantized] = store_info(store.get());
+                if (layout == 0 && encoding == TP_SH_ENCODING_UNORM8 && !quantized)
+                    r->single_unorm8 = time_coherent_single(store.get(), paths, sink);
+                if (layout == 1 && encoding == TP_SH_ENCODING_UNORM8 && quantized)
+                    r->single_smallest = time_coherent_single(store.get(), paths, sink);
+            }
     r->batch = time_batch(fast.get(), paths, 1, sink);
     r->batch_jobs2 = time_batch_two_jobs(fast.get(), paths, sink);
     r->batch_library2 = time_batch(fast.get(), paths, 2, sink);
@@ -444,6 +468,9 @@ int run_store_bench(int argc, char** argv) {
     if (cgal) print_row("CGAL exact `locate(p, hint)` + weights in double + blend (coherent)", r, &SizeResult::cgal);
     print_row("tetprobe coherent single, `tp_store_interpolate`", r, &SizeResult::single);
     print_row("tetprobe coherent single, compact layout", r, &SizeResult::single_compact);
+    print_row("tetprobe coherent single, fast layout, unorm8 SH", r, &SizeResult::single_unorm8);
+    print_row("tetprobe coherent single, compact layout, unorm8 SH, quantised positions (smallest L2 store)", r,
+              &SizeResult::single_smallest);
     print_row("tetprobe batch, 1,024 objects per frame, 1 thread", r, &SizeResult::batch);
     print_row("tetprobe batch, 2 std::threads x 512 objects per frame (wall time / queries)", r,
               &SizeResult::batch_jobs2);
@@ -517,6 +544,43 @@ int run_store_bench(int argc, char** argv) {
     std::printf("\nbuild: `tp_store_build` on the same points (screening, merging, TetGen, hull and outer cells, "
                 "ordering, start grid, blob); TetGen: its Delaunay call alone.\n\n");
 
+    std::printf("### Bytes per probe by layout, SH encoding and positions (issue 17)\n\n");
+    std::printf("| layout | SH | positions | %zu probes | %zu probes | %zu probes |\n", kProbeCounts[0], kProbeCounts[1],
+                kProbeCounts[2]);
+    std::printf("| --- | --- | --- | ---: | ---: | ---: |\n");
+    for (int layout = 0; layout < 2; ++layout)
+        for (int encoding = 0; encoding < 4; ++encoding)
+            for (int quantized = 0; quantized < 2; ++quantized) {
+                std::printf("| %s | %s | %s |", layout ? "compact" : "fast", kEncodingNames[encoding],
+                            quantized ? "16-bit" : "float32");
+                for (int i = 0; i < kSizes; ++i) {
+                    const tp_store_info& info = r[i].encoded[layout][encoding][quantized];
+                    std::printf(" %.1f |", double(info.bytes) / info.probes);
+                }
+                std::printf("\n");
+            }
+    // The smallest L2 store at 1.5k probes, part by part, and what is left for the cells.
+    {
+        const tp_store_info& small = r[0].encoded[1][TP_SH_ENCODING_UNORM8][1];
+        std::printf("\nThe smallest L2 store (compact, unorm8, 16-bit positions) of %zu random probes, %llu bytes:\n\n",
+                    r[0].probes, (unsigned long long)small.bytes);
+        std::printf("| part | bytes | bytes/probe |\n| --- | ---: | ---: |\n");
+        for (uint32_t s = 0; s < TP_STORE_SECTION_COUNT; ++s)
+            if (small.section_bytes[s])
+                std::printf("| %s | %llu | %.2f |\n", kSectionNames[s], (unsigned long long)small.section_bytes[s],
+                            double(small.section_bytes[s]) / small.probes);
+        const double goal = 48.0 * double(small.probes);
+        const double outside_cells = double(small.bytes - small.section_bytes[TP_STORE_SECTION_CELLS]);
+        const double outside_cells_and_grid = outside_cells - double(small.section_bytes[TP_STORE_SECTION_GRID]);
+        std::printf("\nEverything but the cells: %.0f bytes (%.1f a probe); without the start grid too (rebuilt at load "
+                    "with the cells): %.0f (%.1f a probe). Left for connectivity under the goal of 48 bytes a probe "
+                    "(%.0f bytes): %.0f bytes with the grid stored (%.2f a cell of %u), %.0f with it rebuilt (%.2f a "
+                    "cell).\n\n",
+                    outside_cells, outside_cells / small.probes, outside_cells_and_grid,
+                    outside_cells_and_grid / small.probes, goal, goal - outside_cells, (goal - outside_cells) / small.cells,
+                    small.cells, goal - outside_cells_and_grid, (goal - outside_cells_and_grid) / small.cells);
+    }
+
     std::printf("### Headline ratios (this run; targets of issue 7)\n\n");
     std::printf("| ratio | %zu probes | %zu probes | %zu probes | target | |\n", kProbeCounts[0], kProbeCounts[1],
                 kProbeCounts[2]);
@@ -555,6 +619,17 @@ int run_store_bench(int argc, char** argv) {
         const bool met = fast_kb <= 450.0 && compact_kb <= 224.0;
         std::printf(" <= 450 kB fast and <= 224 kB compact at 1.5k (here %.0f kB / %.0f kB) | %s |\n", fast_kb,
                     compact_kb, met ? "met" : "missed");
+    }
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].single_smallest / r[i].single;
+    print_ratio("smallest L2 store / fast layout, coherent single (issue 17, for the rebuilt layout)", v, "%.2fx",
+                "<= 1.3x", true, 1.3, all);
+    {
+        const tp_store_info& small = r[0].encoded[1][TP_SH_ENCODING_UNORM8][1];
+        const double kept = double(small.bytes - small.section_bytes[TP_STORE_SECTION_CELLS] -
+                                   small.section_bytes[TP_STORE_SECTION_GRID]);
+        std::printf("| smallest L2 store at 1.5k without cells and grid (the rebuilt layout's floor), bytes | %.0f | - | - | "
+                    "<= 72,000 with the cells rebuilt at load | floor %s (cells still stored) |\n", kept,
+                    kept <= 72000 ? "within" : "over");
     }
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].build_ms / r[i].tetgen_ms;
     print_ratio("build / TetGen", v, "%.2fx", "<= 1.5x at 10k and 65k", true, 1.5, large);

@@ -71,7 +71,7 @@ def check_precision(doc):
     expect(doc["schema"] == "tetprobe-bench-precision/1", "precision schema")
     for scene in doc["scenes"]:
         rows = {r["id"]: r for r in scene["rows"]}
-        expect(len(rows) == 27, f"precision: {len(rows)} rows, expected 3 storages x 3 orders x 3 windows")
+        expect(len(rows) == 63, f"precision: {len(rows)} rows, expected 7 storages x 3 orders x 3 windows")
         for r in rows.values():
             for key in ["rms_error", "max_error", "negative_fraction", "ns_per_query", "bytes_per_probe"]:
                 expect(finite(r[key]), f"precision {r['id']}: {key} = {r[key]}")
@@ -79,14 +79,23 @@ def check_precision(doc):
             if r["precision"] == "float32":
                 # Weight 1 at a probe on the baked floats: the probe's own bake, bit for bit.
                 expect(r["at_probes_max_error"] == 0, f"precision {r['id']}: float32 at probes {r['at_probes_max_error']}")
-            else:
+            elif r["precision"] == "half":
                 expect(r["at_probes_max_error"] < HALF_AT_PROBES, f"precision {r['id']}: half at probes")
-            if r["window"] == "nonnegative":
+            if r["window"] == "nonnegative" and r["precision"] in ("float32", "half"):
                 # Applied per probe: a blend of probes each non-negative everywhere has fewer negatives (up to
-                # the rounding of the stored coefficients) than the blend of the raw probes.
+                # the rounding of the stored coefficients) than the blend of the raw probes. (Not for the
+                # 8-bit and L1 encodings: they store other coefficients than the window was applied to.)
                 plain = rows[r["id"].replace("_nonnegative", "_none")]
                 expect(r["negative_fraction"] <= plain["negative_fraction"],
                        f"precision {r['id']}: non-negative window left more negatives than none")
+        # The 8-bit and L1 encodings: never more accurate than half at the probes, and smaller.
+        for encoding in ["unorm8", "half_l1", "unorm8_l1"]:
+            row, half = rows[f"{encoding}_fast_L2_none"], rows["half_fast_L2_none"]
+            expect(row["at_probes_max_error"] >= half["at_probes_max_error"], f"precision {encoding}: at probes beats half")
+            expect(row["store_bytes_per_probe"] < half["store_bytes_per_probe"], f"precision {encoding}: not smaller")
+        smallest = rows["unorm8_compact_quantized_L2_none"]
+        expect(smallest["store_bytes_per_probe"] < rows["unorm8_fast_L2_none"]["store_bytes_per_probe"],
+               "precision: the smallest L2 store is not smaller than unorm8 fast")
         for order in ["L2", "L1", "ZH3"]:
             fast, compact = rows[f"half_fast_{order}_none"], rows[f"half_compact_{order}_none"]
             expect(abs(fast["rms_error"] - compact["rms_error"]) < 1e-4, f"precision {order}: fast vs compact")

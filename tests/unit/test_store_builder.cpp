@@ -471,6 +471,27 @@ TEST_CASE("builder: probes closer than the merge tolerance merge, farther ones d
     check_store(kept);
 }
 
+TEST_CASE("builder: probes that coincide in a line's (flat set's) decided coordinates merge, at any merge tolerance", "[builder]") {
+    // Off the line (plane) by less than the flat tolerance and sharing the coordinates the run time
+    // decides in with another probe: moved onto the set they would be two probes at one point (found by
+    // fuzzing with coordinates near 1e25, where the reduced coordinates still differed by a rounding).
+    std::vector<float> line, flat;
+    for (int k = 0; k < 10; ++k) line.insert(line.end(), {0.0f, 0.0f, float(k)});
+    line.insert(line.end(), {1e-6f, 0.0f, 5.0f});
+    for (int x = 0; x < 4; ++x)
+        for (int y = 0; y < 4; ++y) flat.insert(flat.end(), {float(x), float(y), 0.0f});
+    flat.insert(flat.end(), {2.0f, 1.0f, 1e-6f});
+    for (const auto& set : {std::make_pair(line, 5u), std::make_pair(flat, 9u)}) {
+        const StoreData d = build(set.first, 0, nullptr, false, 0.0);
+        const uint32_t last = uint32_t(set.first.size() / 3) - 1;
+        INFO("dimension " << d.dimension);
+        REQUIRE(d.dimension == (set.second == 5u ? 1u : 2u));
+        REQUIRE(d.probe_count() == last);
+        REQUIRE(d.input_remap[last] == d.input_remap[set.second]);
+        REQUIRE(d.probe_source[d.input_remap[last]] == set.second);  // the first given survives
+    }
+}
+
 TEST_CASE("builder: a flat set merges probes that differ only across its plane", "[builder]") {
     std::vector<float> p = families::lattice(4, 4, 1).positions;
     p.insert(p.end(), {1, 1, 1e-5f});  // above lattice probe (1,1,0): the same point of the plane
