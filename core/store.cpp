@@ -46,9 +46,10 @@ void set_cell_records(Store::Impl& s, const uint8_t* section) {
     s.cells = records;
 }
 
-// Quantised positions decoded to the floats every query decides on.
+// Quantised positions decoded to the floats every query decides on (and one float of zeros after them:
+// the AVX2 orientations read 16 bytes at a position, see tetrahedron_orientations.h).
 void decode_positions(Store::Impl& s, const uint8_t* section) {
-    s.decoded_positions = aligned_bytes(size_t(s.probe_count) * 3 * sizeof(float));
+    s.decoded_positions = aligned_bytes((size_t(s.probe_count) * 3 + 1) * sizeof(float));
     float* out = reinterpret_cast<float*>(s.decoded_positions.get());
     for (size_t i = 0; i < size_t(s.probe_count) * 3; ++i) {
         uint16_t q;

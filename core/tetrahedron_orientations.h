@@ -64,7 +64,7 @@ struct Avx2Orientations {
     }
 
     // Reads 16 bytes at each vertex (its 3 floats and 4 bytes after them, which the store guarantees
-    // readable: the positions section is followed by the normals section).
+    // readable: the positions section is followed by the SH section, decoded positions by a spare float).
     __attribute__((target("avx2"))) static inline Orientations of(const float* const P[4], const float q[3]) {
         __m128 p0 = _mm_loadu_ps(P[0]), p1 = _mm_loadu_ps(P[1]), p2 = _mm_loadu_ps(P[2]), p3 = _mm_loadu_ps(P[3]);
         _MM_TRANSPOSE4_PS(p0, p1, p2, p3);
