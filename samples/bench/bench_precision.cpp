@@ -1,7 +1,8 @@
 // tetprobe_bench precision [--out DIR] [--quick] [--scene PATH]: part 2 of issue 8. SH float32 (the baked
 // floats blended with tetprobe's own weights, tp_store_weights) against half (tp_store_interpolate), fast
-// against compact layout, the 8-bit and L1 SH encodings of issue 17 (unorm8, half_l1, unorm8_l1 in the
-// fast layout; unorm8 with quantised positions in the compact one: the smallest L2 store), and the
+// against compact layout, the 8-bit and L1 SH encodings and the quantised positions of issue 17
+// (unorm8, half_l1, unorm8_l1 and half at 16-bit positions in the fast layout; unorm8 at 16-bit positions
+// in the compact one: the smallest L2 store), and the
 // evaluation choices L1, ZH3 (from L1) and full L2, each without a window,
 // with Sloan's window and with the smallest non-negative window. Orders (ZH3 included) and Sloan's window are
 // applied per query (tp_sh_eval_irradiance_ex on the blend); the non-negative window, which costs tens of
@@ -70,7 +71,7 @@ struct Storage {
 };
 
 // precision "float32" or a store's SH encoding ("half", "unorm8", "half_l1", "unorm8_l1"); layout
-// "fast", "compact" or "compact_quantized" (16-bit positions); over the given probe SH.
+// "fast" or "compact", "_quantized" for 16-bit positions; over the given probe SH.
 Storage make_storage(const MethodScene& s, const std::string& precision, const std::string& layout,
                      const std::vector<float>& probe_sh) {
     static const char* const encodings[4] = {"half", "unorm8", "half_l1", "unorm8_l1"};  // by TP_SH_ENCODING_*
@@ -80,8 +81,9 @@ Storage make_storage(const MethodScene& s, const std::string& precision, const s
     Storage storage;
     storage.precision = precision;
     storage.layout = layout;
-    storage.store.reset(build_store(s, probe_sh, layout == "fast" ? 0u : TP_BUILD_COMPACT, encoding,
-                                    layout == "compact_quantized"),
+    const bool quantized = layout.size() > 10 && layout.compare(layout.size() - 10, 10, "_quantized") == 0;
+    storage.store.reset(build_store(s, probe_sh, layout.compare(0, 7, "compact") == 0 ? TP_BUILD_COMPACT : 0u, encoding,
+                                    quantized),
                         tp_store_release);
     const double probes = double(s.probes.size() / 3);
     tp_store* store = storage.store.get();
@@ -289,8 +291,8 @@ Json bench_scene(const std::string& path, const MethodSettings& settings) {
         }
 
     const std::pair<const char*, const char*> storage_kinds[] = {
-        {"float32", "fast"},  {"half", "fast"},      {"half", "compact"},         {"unorm8", "fast"},
-        {"half_l1", "fast"}, {"unorm8_l1", "fast"}, {"unorm8", "compact_quantized"}};
+        {"float32", "fast"},  {"half", "fast"},      {"half", "compact"},           {"half", "fast_quantized"},
+        {"unorm8", "fast"},   {"half_l1", "fast"},   {"unorm8_l1", "fast"},         {"unorm8", "compact_quantized"}};
     std::vector<RowResult> results;
     results.reserve(std::size(storage_kinds) * evaluations.size());
     for (const auto& kind : storage_kinds) {

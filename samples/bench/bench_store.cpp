@@ -313,6 +313,7 @@ struct SizeResult {
     // the coherent single query on the fast layout in unorm8 and on the smallest L2 store.
     tp_store_info encoded[2][4][2] = {};
     double single_unorm8 = 0, single_smallest = 0;
+    double floor_encoded[4] = {};  // the blend-only floor with core's kernel of each SH encoding (fast layout)
 };
 
 const char* const kEncodingNames[4] = {"half", "unorm8", "half_l1", "unorm8_l1"};  // by TP_SH_ENCODING_*
@@ -381,6 +382,9 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
                 const StorePtr store = build_store(positions, sh, layout ? TP_BUILD_COMPACT : 0u, encoding, quantized != 0);
                 if (!store) return false;
                 r->encoded[layout][encoding][quantized] = store_info(store.get());
+                BlobSh records;
+                if (layout == 0 && !quantized && read_blob_sh(store.get(), &records, true))
+                    r->floor_encoded[encoding] = time_blend_floor_records(store.get(), records, paths, sink);
                 if (layout == 0 && encoding == TP_SH_ENCODING_UNORM8 && !quantized)
                     r->single_unorm8 = time_coherent_single(store.get(), paths, sink);
                 if (layout == 1 && encoding == TP_SH_ENCODING_UNORM8 && quantized)
@@ -464,6 +468,11 @@ int run_store_bench(int argc, char** argv) {
     std::printf("| method | %zu probes | %zu probes | %zu probes |\n", kProbeCounts[0], kProbeCounts[1], kProbeCounts[2]);
     std::printf("| --- | ---: | ---: | ---: |\n");
     print_row("blend-only floor (same probes and weights as tetprobe coherent, no search)", r, &SizeResult::floor);
+    for (int e = 0; e < 4; ++e) {
+        std::printf("| blend-only floor, core's %s kernel (sh_blend.h) |", kEncodingNames[e]);
+        for (int i = 0; i < kSizes; ++i) std::printf(" %.1f |", r[i].floor_encoded[e]);
+        std::printf("\n");
+    }
     print_row("plain float walk + blend (coherent)", r, &SizeResult::plain);
     if (cgal) print_row("CGAL exact `locate(p, hint)` + weights in double + blend (coherent)", r, &SizeResult::cgal);
     print_row("tetprobe coherent single, `tp_store_interpolate`", r, &SizeResult::single);

@@ -24,24 +24,30 @@ uint32_t map_entry(const uint8_t* map, uint64_t width, size_t i) {
 
 }  // namespace
 
-bool read_blob_sh(const tp_store* store, BlobSh* out) {
+bool read_blob_sh(const tp_store* store, BlobSh* out, bool any_encoding) {
     const void* data = nullptr;
     size_t size = 0;
-    return tp_store_blob(store, &data, &size) == TP_OK && read_blob_sh(data, size, out);
+    return tp_store_blob(store, &data, &size) == TP_OK && read_blob_sh(data, size, out, any_encoding);
 }
 
-bool read_blob_sh(const void* blob, size_t size, BlobSh* out) {
+bool read_blob_sh(const void* blob, size_t size, BlobSh* out, bool any_encoding) {
     if (size < tetprobe::kHeaderSize) return false;
     const uint8_t* bytes = static_cast<const uint8_t*>(blob);
     tetprobe::StoreHeader h;
     tetprobe::SectionEntry s[tetprobe::kSectionCount];
     std::memcpy(&h, bytes, sizeof h);
     std::memcpy(s, bytes + sizeof h, sizeof s);
-    if (h.format_version != tetprobe::kStoreFormatVersion || h.sh_encoding != tetprobe::kShHalf) return false;
+    if (h.format_version != tetprobe::kStoreFormatVersion || h.sh_encoding >= tetprobe::kShEncodingCount ||
+        (h.sh_encoding != tetprobe::kShHalf && !any_encoding))
+        return false;
     for (const tetprobe::SectionEntry& e : s)
         if (e.offset > size || e.size > size - e.offset) return false;
-    out->stride = tetprobe::sh_record_bytes(tetprobe::kShHalf, h.layout == tetprobe::kLayoutFast) / 2;
-    out->sh = reinterpret_cast<const uint16_t*>(bytes + s[tetprobe::kSectionSh].offset);
+    out->encoding = h.sh_encoding;
+    out->record_bytes = tetprobe::sh_record_bytes(tetprobe::ShEncoding(h.sh_encoding), h.layout == tetprobe::kLayoutFast);
+    out->records = bytes + s[tetprobe::kSectionSh].offset;
+    const bool half = h.sh_encoding == tetprobe::kShHalf;
+    out->stride = half ? out->record_bytes / 2 : 0;
+    out->sh = half ? reinterpret_cast<const uint16_t*>(out->records) : nullptr;
     // input -> stored: the blob's remap, or (nothing merged) its probe_source inverted.
     const uint64_t width = tetprobe::store_map_bytes(h.input_probe_count);
     out->input_remap.resize(h.input_probe_count);

@@ -3,6 +3,7 @@
 #include "bench_timing.h"
 
 #include "core/half.h"
+#include "core/sh_blend.h"
 
 #include <cstring>
 
@@ -69,6 +70,38 @@ double time_blend_floor(const tp_store* store, const BlobSh& blob, const ObjectP
                             const Clock::time_point t0 = Clock::now();
                             for (size_t i = 0; i < n; ++i) {
                                 tetprobe::blend_sh_halves(&sh[4 * i], &weights[4 * i], out);
+                                acc += out[0];
+                            }
+                            const double s = seconds_since(t0);
+                            *sink += acc;
+                            return s;
+                        }),
+                        n);
+}
+
+double time_blend_floor_records(const tp_store* store, const BlobSh& blob, const ObjectPaths& paths, float* sink) {
+    const std::vector<int32_t> start = first_hints(store, paths);
+    std::vector<const uint8_t*> records;
+    std::vector<float> weights;
+    records.reserve(4 * paths.timed_queries());
+    weights.reserve(4 * paths.timed_queries());
+    for (size_t o = 0; o < paths.objects; ++o) {
+        int32_t hint = start[o];
+        for (size_t f = 1; f < paths.frames; ++f) {
+            const tp_location loc = locate(store, paths.at(o, f), &hint);
+            for (int k = 0; k < 4; ++k) {
+                records.push_back(blob.records + blob.record_bytes * blob.input_remap[loc.probes[k]]);
+                weights.push_back(loc.weights[k]);
+            }
+        }
+    }
+    const tetprobe::ShBlendFunction blend = tetprobe::sh_blend_function(tetprobe::ShEncoding(blob.encoding));
+    const size_t n = paths.timed_queries();
+    return ns_per_query(median_seconds([&] {
+                            float out[27], acc = 0;
+                            const Clock::time_point t0 = Clock::now();
+                            for (size_t i = 0; i < n; ++i) {
+                                blend(&records[4 * i], &weights[4 * i], out);
                                 acc += out[0];
                             }
                             const double s = seconds_since(t0);

@@ -21,5 +21,8 @@ double time_coherent_single(const tp_store* store, const ObjectPaths& paths, flo
 // ns per blend of the floor: the same 4 x 27 half -> float blend (core/half.h) of the same probes with the
 // same weights as the coherent queries (found first, untimed, by tp_store_locate), no search.
 double time_blend_floor(const tp_store* store, const BlobSh& blob, const ObjectPaths& paths, float* sink);
+// The same with core's blend kernel of the blob's SH encoding (sh_blend.h), reading its records: what a
+// query of that store pays for its blend and decode.
+double time_blend_floor_records(const tp_store* store, const BlobSh& blob, const ObjectPaths& paths, float* sink);
 
 }  // namespace bench

@@ -71,7 +71,7 @@ def check_precision(doc):
     expect(doc["schema"] == "tetprobe-bench-precision/1", "precision schema")
     for scene in doc["scenes"]:
         rows = {r["id"]: r for r in scene["rows"]}
-        expect(len(rows) == 63, f"precision: {len(rows)} rows, expected 7 storages x 3 orders x 3 windows")
+        expect(len(rows) == 72, f"precision: {len(rows)} rows, expected 8 storages x 3 orders x 3 windows")
         for r in rows.values():
             for key in ["rms_error", "max_error", "negative_fraction", "ns_per_query", "bytes_per_probe"]:
                 expect(finite(r[key]), f"precision {r['id']}: {key} = {r[key]}")
