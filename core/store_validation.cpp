@@ -5,7 +5,6 @@
 #include "core/error.h"
 #include "core/orientation.h"
 #include "core/plane_projection.h"
-#include "core/position_quantization.h"
 #include "core/sh_encoding.h"
 #include "core/store_format.h"
 #include "core/store_layout.h"
