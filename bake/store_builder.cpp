@@ -55,6 +55,18 @@ void check_settings(const BuildSettings& settings) {
     }
 }
 
+// The quantisation step of an axis whose probes span `extent`: the smallest power of two that spans
+// it, with a little room for the rounding of local coordinates, in 65,534 steps (the box starts up to
+// a step below the probes); 0 for a flat axis.
+double quantization_step(double extent) {
+    if (!(extent > 0)) return 0;
+    const double needed = extent * (1 + 0x1p-20) / double(kPositionCodeMax - 1);
+    int exponent;
+    std::frexp(needed, &exponent);  // needed = f 2^exponent, 0.5 <= f < 1
+    const double step = std::ldexp(1.0, exponent);
+    return step / 2 >= needed ? step / 2 : step;
+}
+
 // The probes that survive merging: kept[j] is the input index of stored probe j, group[i] the stored
 // probe of input probe i.
 struct ProbeGroups {
@@ -253,7 +265,15 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         world_lo = world_lo.cwiseMin(p);
         world_hi = world_hi.cwiseMax(p);
     }
-    const Eigen::Vector3d origin = 0.5 * (world_lo + world_hi);
+    // Quantised positions: on each axis a power-of-two step (the smallest that spans the extent in 65,534
+    // steps) and an origin on that step, so that coordinates on a grid of that step or coarser (probes
+    // placed every 0.5 m, say) are stored exactly and a lattice stays a lattice.
+    Eigen::Vector3d origin = 0.5 * (world_lo + world_hi);
+    double step[3] = {0, 0, 0};
+    for (int a = 0; a < 3 && settings.quantize_positions; ++a) {
+        step[a] = quantization_step(world_hi[a] - world_lo[a]);
+        if (step[a] > 0) origin[a] = std::nearbyint(origin[a] / step[a]) * step[a];
+    }
     std::vector<Eigen::Vector3d> local(count);  // float-exact; flat and line sets later projected
     Eigen::Vector3d lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
     for (size_t i = 0; i < count; ++i) {
@@ -261,15 +281,24 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         lo = lo.cwiseMin(local[i]);
         hi = hi.cwiseMax(local[i]);
     }
-    const double diagonal = (hi - lo).norm();
     // Quantised positions first: merging, dimension, triangulation and every later stage see the
-    // positions the blob stores. lo and hi are floats, and the extreme probes keep them exactly.
+    // positions the blob stores. The box is 65,535 steps from a multiple of the step below the probes
+    // (floats, exactly), so every code decodes to a multiple of the step.
     float box_lo[3], box_hi[3];
-    for (int a = 0; a < 3; ++a) box_lo[a] = float(lo[a]), box_hi[a] = float(hi[a]);
+    for (int a = 0; a < 3; ++a) {
+        box_lo[a] = float(step[a] > 0 ? std::floor(lo[a] / step[a]) * step[a] : lo[a]);
+        box_hi[a] = float(step[a] > 0 ? double(box_lo[a]) + double(kPositionCodeMax) * step[a] : hi[a]);
+    }
     auto quantized = [&](double p, int a) { return double(quantize_position(float(p), box_lo[a], box_hi[a])); };
-    if (settings.quantize_positions)
-        for (size_t i = 0; i < count; ++i)
+    if (settings.quantize_positions) {
+        lo = Eigen::Vector3d::Constant(HUGE_VAL), hi = -lo;
+        for (size_t i = 0; i < count; ++i) {
             for (int a = 0; a < 3; ++a) local[i][a] = quantized(local[i][a], a);
+            lo = lo.cwiseMin(local[i]);
+            hi = hi.cwiseMax(local[i]);
+        }
+    }
+    const double diagonal = (hi - lo).norm();
     // The canonical order: along a space-filling curve over the bounds, ties by coordinates.
     const std::vector<uint32_t> canonical = curve_order(local, lo, hi);
     std::vector<uint32_t> rank(count);

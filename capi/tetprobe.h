@@ -133,11 +133,13 @@ typedef struct tp_build_options {
     const struct tp_scene* scene;
     /** Format 5: TP_SH_ENCODING_* (default HALF). */
     uint32_t sh_encoding;
-    /** Non-zero: positions in 16 bits per axis over the probes' bounds (6 bytes a probe in place of 12).
-        The positions are quantised before anything else, so the cells are exactly Delaunay for the stored
-        positions and a query at a stored probe weighs it exactly 1; a stored probe lies within half a
-        step (tp_store_info.position_step) of its input on each axis. Probes that quantise to the same
-        point are merged (tp_store_info.merged_probes). */
+    /** Non-zero: positions in 16 bits per axis (6 bytes a probe in place of 12), on a grid whose step is
+        a power of two: the smallest that spans the probes' extent in 65,534 steps, so coordinates on a
+        grid of that step or coarser (probes every 0.5 m) are kept exactly. The positions are quantised
+        before anything else, so the cells are exactly Delaunay for the stored positions and a query at a
+        stored probe weighs it exactly 1; a stored probe lies within half a step
+        (tp_store_info.position_step) of its input on each axis. Probes that quantise to the same point
+        are merged (tp_store_info.merged_probes). */
     uint32_t quantize_positions;
 } tp_build_options;
 
@@ -208,7 +210,7 @@ typedef struct tp_store_info {
     uint32_t grid[3];            /* cells of the cold-start grid along x, y, z */
     uint64_t bytes;              /* size of the blob */
     double origin[3];            /* local origin of the store, world units */
-    float bounds_min[3];         /* world-space bounds of the probes */
+    float bounds_min[3];         /* world-space bounds of the probes (quantised positions: the quantisation box) */
     float bounds_max[3];
     uint32_t occlusion_lights;   /* mixed lights with occlusion per probe (0 = none) */
     uint32_t leak_edges;         /* probe pairs that cannot see each other (0 = no leak control) */
@@ -217,8 +219,8 @@ typedef struct tp_store_info {
     uint32_t sh_encoding;        /* TP_SH_ENCODING_* */
     uint32_t quantized_positions; /* 1: 16 bits per axis over the bounds, 0: float32 */
     uint32_t hull_probes;        /* probes on the hull (those whose normals the store keeps) */
-    double position_step[3];     /* quantised positions: the largest gap between neighbouring stored values
-                                    on each axis (world units); 0 for float32 positions */
+    double position_step[3];     /* quantised positions: the gap between neighbouring stored values on each
+                                    axis (world units; the largest, should rounding vary it); 0 for float32 */
     uint64_t section_bytes[16];  /* bytes of each part, indexed by TP_STORE_SECTION_* (the rest 0) */
 } tp_store_info;
 

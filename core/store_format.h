@@ -25,7 +25,9 @@
 //   kPositionsUnorm16: positions uint16 x 3 per probe, q on axis k decoded (core/position_quantization.h)
 //     as float(lo + (q / 65535) * (hi - lo)) evaluated in double, clamped to [lo, hi] = [bounds_min[k],
 //     bounds_max[k]]: the same float on every platform. The builder quantises first and tessellates the
-//     decoded positions, so the cells are exactly Delaunay for them. Normals int16 x 2 per hull probe,
+//     decoded positions, so the cells are exactly Delaunay for them; it makes hi - lo 65535 times a power
+//     of two with lo (and the origin) on a multiple of it, so codes decode to multiples of that step and
+//     coordinates already on it stay exact. Normals int16 x 2 per hull probe,
 //     octahedral (core/octahedral_normal.h: u = max(q0 / 32767, -1), v likewise, folded below the
 //     equator, normalised in double, rounded to float): within 6e-5 radians of the builder's normal.
 // - cells [0, inner_cell_count) are inner cells with d+1 probes in vertex slots 0..d, positively

@@ -263,9 +263,13 @@ void test_store_encodings_and_quantization(void) {
             CHECK(info.section_bytes[TP_STORE_SECTION_NORMALS] == info.hull_probes * (quantize ? 4u : 12u));
             CHECK(info.section_bytes[TP_STORE_SECTION_INPUT_REMAP] == 0); /* nothing merged */
             CHECK(info.hull_probes >= 8 && info.hull_probes < CLOUD);
-            for (k = 0; k < 3; ++k)
-                CHECK(quantize ? info.position_step[k] > 2.0 / 65535 * 0.99 && info.position_step[k] < 2.0 / 65535 * 1.01
+            for (k = 0; k < 3; ++k) {
+                /* A power of two spanning the cube's extent 2 in at most 65,534 steps, less than twice that. */
+                int exponent;
+                const double mantissa = frexp(info.position_step[k], &exponent);
+                CHECK(quantize ? mantissa == 0.5 && info.position_step[k] >= 2.0 / 65534 && info.position_step[k] < 4.0 / 65534
                                : info.position_step[k] == 0.0);
+            }
             for (i = 0; i < CLOUD; ++i) {
                 float decoded[27], out[27];
                 EXPECT_OK(tp_store_probe_sh(store, (uint32_t)i, decoded));

@@ -62,7 +62,8 @@ def test_build_from_csv_then_info_and_query(tmp_path):
     assert small_info["sh_encoding"] == "unorm8_l1" and small_info["quantized_positions"] is True
     assert sum(small_info["section_bytes"].values()) == small_info["bytes"] == small_path.stat().st_size
     assert small_info["section_bytes"]["sh"] == 40 * 15 and small_info["section_bytes"]["positions"] == 40 * 6
-    assert all(0 < step < 4.0 / 65535 for step in small_info["position_step"])
+    extent = positions.max(axis=0).astype(np.float64) - positions.min(axis=0)
+    assert all(e / 65534 <= step < 2 * e / 65534 for step, e in zip(small_info["position_step"], extent))
     refused = run("build", csv, "-o", tmp_path / "no.tpb", "--sh-encoding", "float8", ok=False)
     assert refused.returncode == 2 and "--sh-encoding" in refused.stderr and not (tmp_path / "no.tpb").exists()
 

@@ -485,7 +485,10 @@ def test_sh_encodings_and_quantized_positions(encoding, quantize):
     assert sections["input_remap"] == 0 and sections["probe_source"] == 300 * 2
     step = np.array(info["position_step"])
     if quantize:
-        assert np.all((step > 0) & (step < 1.01 / 65535))  # the box is within [0, 1]^3
+        # A power of two spanning each axis's extent in at most 65,534 steps, less than twice that.
+        extent = positions.max(axis=0).astype(np.float64) - positions.min(axis=0)
+        assert np.all(np.frexp(step)[0] == 0.5)
+        assert np.all((step >= extent / 65534) & (step < 2 * extent / 65534))
     else:
         assert np.all(step == 0)
 

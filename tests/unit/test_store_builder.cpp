@@ -25,6 +25,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -713,8 +714,35 @@ TEST_CASE("builder: quantised positions are on their grid, within half a step of
         const std::unique_ptr<tetprobe::Store> store = tetprobe::Store::load(blob.data(), blob.size());
         for (uint32_t j = 0; j < d.probe_count(); ++j)
             REQUIRE(std::memcmp(store->probe_position(j), &d.positions[3 * size_t(j)], 3 * sizeof(float)) == 0);
-        if (set.name == "random")  // the probes did move: the bound is not vacuous
+        if (&set == &sets[0])  // the probes did move (elsewhere float input may already lie on the grid)
             for (int a = 0; a < 3; ++a) CHECK(worst[a] > 0.3 * gap[a]);
+    }
+}
+
+TEST_CASE("builder: a lattice on the quantisation grid stays a lattice: the same positions and cells as unquantised", "[builder]") {
+    // Probes every 0.5 (and at 1e4 from the origin, where float input itself lies on a coarse grid): the
+    // power-of-two step divides their coordinates, so quantising moves none of them.
+    for (const families::ProbeSet& set : {families::lattice(6, 5, 4, 0.5), families::random_cloud(200, 49, 3.0, 1e4)}) {
+        const StoreData plain = build(set.positions), quantized = build(set.positions, 0, nullptr, true);
+        INFO(set.name);
+        REQUIRE(quantized.position_encoding == tetprobe::kPositionsUnorm16);
+        REQUIRE(quantized.probe_count() == plain.probe_count());
+        for (size_t i = 0; i < plain.positions.size(); ++i)
+            REQUIRE(double(quantized.positions[i]) + quantized.origin[i % 3] == double(plain.positions[i]) + plain.origin[i % 3]);
+        REQUIRE(quantized.probe_source == plain.probe_source);
+        // The same cells (stored in another order: the order follows the bounds, the quantisation box here).
+        auto cell_set = [](const StoreData& d) {
+            std::multiset<std::array<uint32_t, 4>> cells;
+            for (size_t c = 0; c < d.cell_count(); ++c) {
+                std::array<uint32_t, 4> v;
+                std::copy_n(&d.cell_vertices[4 * c], 4, v.begin());
+                std::sort(v.begin(), v.end());
+                cells.insert(v);
+            }
+            return cells;
+        };
+        REQUIRE(quantized.inner_cell_count == plain.inner_cell_count);
+        REQUIRE(cell_set(quantized) == cell_set(plain));
     }
 }
 
@@ -735,16 +763,17 @@ TEST_CASE("builder: the cells are Delaunay for the quantised positions, not for 
 TEST_CASE("builder: probes that quantise to the same point are merged into the first, with the mean SH", "[builder]") {
     // 200 probes and copies of 20 of them a quarter of a step away (distinct floats, which a float build
     // with merge tolerance 0 keeps apart) that quantise to their originals' point. The grid is the
-    // builder's: the box of the local positions around the centre of the world bounds.
+    // builder's, read from a build of the originals (the copies lie inside their bounds, so it stays).
     families::ProbeSet set = families::random_cloud(200, 48);
+    const StoreData originals = build(set.positions, 0, nullptr, true, 0.0);
     double lo[3], hi[3], origin[3];
     float box_lo[3], box_hi[3];
     for (int a = 0; a < 3; ++a) {
         lo[a] = hi[a] = set.positions[size_t(a)];
         for (size_t i = 0; i < set.count(); ++i)
             lo[a] = std::min(lo[a], double(set.positions[3 * i + a])), hi[a] = std::max(hi[a], double(set.positions[3 * i + a]));
-        origin[a] = 0.5 * (lo[a] + hi[a]);
-        box_lo[a] = float(lo[a] - origin[a]), box_hi[a] = float(hi[a] - origin[a]);
+        origin[a] = originals.origin[a];
+        box_lo[a] = originals.bounds_min[a], box_hi[a] = originals.bounds_max[a];
     }
     std::vector<uint32_t> copied;
     for (uint32_t i = 0; i < 200 && copied.size() < 20; ++i) {

@@ -37,10 +37,12 @@ class Store(NativeHandle):
         L10, L11, L2-2, L2-1, L20, L21, L22 (radiance, not pre-convolved). sh_encoding says how the store
         keeps them: "half" (27 half floats), "unorm8" (L0 as halves, the rest as 8-bit ratios to L0 over
         the range a non-negative radiance reaches), or "half_l1" / "unorm8_l1" (band 2 dropped: queries
-        return zeros there). quantize_positions=True stores positions in 16 bits per axis over the
-        probes' bounds (quantised first, so the cells are exactly Delaunay for the stored positions and a
-        query at a stored probe weighs it exactly 1; a stored probe moves at most half of
-        info()["position_step"] per axis; probes that quantise to one point merge). Duplicate and near-duplicate probes are merged (the first given survives, SH averaged).
+        return zeros there). quantize_positions=True stores positions in 16 bits per axis on a
+        power-of-two grid over the probes' bounds (quantised first, so the cells are exactly Delaunay for
+        the stored positions and a query at a stored probe weighs it exactly 1; a stored probe moves at
+        most half of info()["position_step"] per axis, one already on that grid not at all; probes that
+        quantise to one point merge). Duplicate and near-duplicate probes are merged (the first given
+        survives, SH averaged).
         compact=True writes the compact layout (the smallest blob: no neighbour section, rebuilt when
         the store is loaded); its answers are the fast layout's (same cells, weights within 1e-6).
         extrapolate=False builds no outer cells (queries outside the hull raise Error(OUTSIDE));
