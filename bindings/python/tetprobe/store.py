@@ -163,8 +163,9 @@ class Store(NativeHandle):
 
     def probe_sh(self, probe):
         """The stored SH of input probe index `probe` (an int in [0, input_probes)) as sh[27] float32,
-        channel-major; the store keeps half floats, so these are the input rounded to half. A merged
-        probe reads its survivor."""
+        channel-major, decoded: the input rounded to the store's SH encoding (half floats by default;
+        zeros in band 2 for the L1 encodings), exactly what a query at the probe returns. A merged probe
+        reads its survivor."""
         out = np.empty(SH_FLOATS, dtype=np.float32)
         check(lib.tp_store_probe_sh(self._live(), int(probe), out))
         return out
