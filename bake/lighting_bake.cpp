@@ -471,10 +471,13 @@ std::vector<float> bake_lighting(const Scene& scene, const std::vector<float>& p
     bool cancelled = false;
     while (true) {
         size_t finished = done.load();
-        if (settings.progress && !cancelled &&
-            settings.progress(settings.progress_user, float(double(finished) / double(count)), "bake") != 0) {
-            cancelled = true;
-            stop = true;
+        if (!cancelled) {
+            try {
+                settings.progress.report(double(finished) / double(count), "bake");
+            } catch (const Error&) {
+                cancelled = true;
+                stop = true;
+            }
         }
         if (finished == count || stop.load()) break;
         std::unique_lock<std::mutex> lock(mutex);

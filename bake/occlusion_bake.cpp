@@ -31,9 +31,7 @@ std::vector<uint8_t> bake_occlusion(const Scene& scene, const std::vector<float>
     }
     const RayCaster caster(scene, origin);
     for (size_t i = 0; i < count; ++i) {
-        if (settings.progress && (i & 1023) == 0 &&
-            settings.progress(settings.progress_user, float(i) / float(count), "occlusion") != 0)
-            throw Error(Status::cancelled, "occlusion bake cancelled");
+        if ((i & 1023) == 0) settings.progress.report(double(i) / double(count), "occlusion");
         float probe[3];
         bool in_range = true;
         for (int k = 0; k < 3; ++k) {

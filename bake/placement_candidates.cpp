@@ -211,7 +211,7 @@ size_t candidate_bound(const Scene& scene, const CandidateRules& rules) {
 }
 
 Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint32_t threads,
-                           const ProgressRange& progress) {
+                           const Progress& progress) {
     Grid grids[2];
     double lo[3], hi[3];
     make_grids(scene, rules, &grids[0], &grids[1], lo, hi);

@@ -48,7 +48,7 @@ size_t candidate_bound(const Scene& scene, const CandidateRules& rules);
 // The candidates and held-out points. Throws as candidate_bound, Error(Status::scene) when the inside
 // test cannot decide (bake/inside_test.h) and Error(Status::cancelled) from the progress callback.
 Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint32_t threads,
-                           const ProgressRange& progress);
+                           const Progress& progress);
 
 // Whether no surface lies closer than margin to the local point (margin 0: always).
 bool clear_of_surfaces(const RayCaster& caster, const float local[3], double margin);

@@ -27,12 +27,6 @@ namespace tetprobe {
 
 namespace {
 
-void report_progress(const BuildSettings& settings, float fraction, const char* stage) {
-    if (settings.progress && settings.progress(settings.progress_user, fraction, stage) != 0) {
-        throw Error(Status::cancelled, "build cancelled");
-    }
-}
-
 void check_settings(const BuildSettings& settings) {
     if (settings.flags & ~uint32_t(TP_BUILD_NO_EXTRAPOLATION | TP_BUILD_INDEX32 | TP_BUILD_COMPACT)) {
         throw Error(Status::invalid_argument, "unknown build flags " + std::to_string(settings.flags));
@@ -236,7 +230,7 @@ void store_occlusion(const BuildSettings& settings, size_t count, StoreData& dat
 StoreData build_store_data(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
                            size_t count, const BuildSettings& settings) {
     check_settings(settings);
-    report_progress(settings, 0.0f, "screening");
+    settings.progress.report(0.0f, "screening");
     const ScreenedProbes input = screen_probe_input(positions, position_stride, sh, sh_stride, count);
 
     // Local frame: centred on the centre of the probes' bounding box (which, unlike a centroid sum,
@@ -261,7 +255,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     std::vector<uint32_t> rank(count);
     for (uint32_t r = 0; r < count; ++r) rank[canonical[r]] = r;
 
-    report_progress(settings, 0.1f, "merging");
+    settings.progress.report(0.1f, "merging");
     ProbeGroups groups;
     groups.kept.resize(count);
     std::iota(groups.kept.begin(), groups.kept.end(), 0u);
@@ -303,7 +297,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         groups.apply(reorder);
     }
 
-    report_progress(settings, 0.2f, "triangulating");
+    settings.progress.report(0.2f, "triangulating");
     std::vector<Eigen::Vector3d> points = gather(local, groups.kept);
     SimplexMesh mesh = triangulate(points, shape);
     const size_t before = points.size();
@@ -311,7 +305,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     if (groups.kept.size() != before) points = gather(local, groups.kept);
     orient_cells(mesh, points, shape);
 
-    report_progress(settings, 0.6f, "hull");
+    settings.progress.report(0.6f, "hull");
     Hull hull;
     if (shape.dimension >= 1) {
         hull = find_hull(mesh, points, shape);
@@ -322,7 +316,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     OuterCells outer;
     if (extrapolate) outer = build_outer_cells(mesh, hull);
 
-    report_progress(settings, 0.7f, "storing");
+    settings.progress.report(0.7f, "storing");
     StoreData data;
     data.flags = ((settings.flags & TP_BUILD_NO_EXTRAPOLATION) ? kFlagNoExtrapolation : 0u) |
                  ((settings.flags & TP_BUILD_INDEX32) ? kFlagIndex32 : 0u) |
@@ -378,16 +372,16 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         }
     }
 
-    report_progress(settings, 0.85f, "ordering");
+    settings.progress.report(0.85f, "ordering");
     order_cells_for_locality(data);
     if (settings.occlusion) store_occlusion(settings, count, data);
     if (settings.scene) {
-        report_progress(settings, 0.87f, "leak control");
+        settings.progress.report(0.87f, "leak control");
         add_leak_edges(*settings.scene, data);
     }
-    report_progress(settings, 0.9f, "grid");
+    settings.progress.report(0.9f, "grid");
     build_start_grid(data);
-    report_progress(settings, 1.0f, "done");
+    settings.progress.report(1.0f, "done");
     return data;
 }
 

@@ -5,6 +5,7 @@
 // a merged group survives (the first given) and, within the merge tolerance, greedy merge chains.
 #pragma once
 
+#include "bake/progress.h"
 #include "bake/scene.h"
 #include "capi/tetprobe.h"
 #include "core/option_defaults.h"
@@ -18,8 +19,7 @@ struct BuildSettings {
     uint32_t flags = 0;              // TP_BUILD_* (the same bits as the store's kFlag*)
     double merge_tolerance = kDefaultMergeTolerance;  // fraction of the bounding-box diagonal
     double flat_tolerance = kDefaultFlatTolerance;    // fraction of the bounding-box diagonal
-    tp_progress_fn progress = nullptr;
-    void* progress_user = nullptr;
+    Progress progress;
     // Optional scene data. occlusion: 4 bytes per input probe at occlusion_stride bytes (channels at
     // and above occlusion_lights are ignored); a merged probe stores the rounded mean of its group.
     const uint8_t* occlusion = nullptr;

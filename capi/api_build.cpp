@@ -1,5 +1,6 @@
 // tp_store_build: the C ABI of the store builder (bake-time library only).
 #include "bake/store_builder.h"
+#include "capi/bake_structs.h"
 #include "capi/boundary.h"
 #include "capi/scene_handle.h"
 #include "capi/strides.h"
@@ -36,8 +37,9 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
     settings.flags = options->flags;
     if (TP_OPTION_FIELD(options, merge_tolerance)) settings.merge_tolerance = options->merge_tolerance;
     if (TP_OPTION_FIELD(options, flat_tolerance)) settings.flat_tolerance = options->flat_tolerance;
-    if (TP_OPTION_FIELD(options, progress)) settings.progress = options->progress;
-    if (TP_OPTION_FIELD(options, progress_user)) settings.progress_user = options->progress_user;
+    if (TP_OPTION_FIELD(options, progress))
+        settings.progress = tetprobe::progress_from_c(
+            options->progress, TP_OPTION_FIELD(options, progress_user) ? options->progress_user : nullptr);
     if (TP_OPTION_FIELD(options, occlusion_lights) && options->occlusion) {
         settings.occlusion = options->occlusion;
         settings.occlusion_stride = tetprobe::resolve_stride(options->occlusion_stride, 4, "occlusion_stride");

@@ -1,4 +1,5 @@
 // Probe placement and probes inside geometry (full library only).
+#include "bake_structs.h"
 #include "boundary.h"
 #include "scene_handle.h"
 #include "strides.h"
@@ -40,8 +41,7 @@ tp_status read_placement_options(const tp_placement_options* options, tetprobe::
     settings.bounces = options->bounces;
     settings.seed = options->seed;
     settings.threads = options->threads;
-    settings.progress = options->progress;
-    settings.progress_user = options->progress_user;
+    settings.progress = tetprobe::progress_from_c(options->progress, options->progress_user);
     return TP_OK;
 }
 

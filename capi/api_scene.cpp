@@ -1,4 +1,5 @@
 // Scenes, the effects plan and the lighting bake (full library only).
+#include "bake_structs.h"
 #include "boundary.h"
 #include "grown_structs.h"
 #include "scene_handle.h"
@@ -38,8 +39,7 @@ tp_status read_options(const tp_bake_options* options, tetprobe::BakeSettings& s
     settings.seed = options->seed;
     settings.threads = options->threads;
     settings.culling = !(options->flags & TP_BAKE_NO_CULLING);
-    settings.progress = options->progress;
-    settings.progress_user = options->progress_user;
+    settings.progress = tetprobe::progress_from_c(options->progress, options->progress_user);
     return TP_OK;
 }
 

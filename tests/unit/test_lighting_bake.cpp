@@ -434,20 +434,20 @@ TEST_CASE("bake: the progress callback is called and can cancel", "[bake]") {
         float last = -1;
         bool ordered = true;
     } log;
-    settings.progress = [](void* user, float fraction, const char*) {
+    settings.progress.callback = [](void* user, float fraction, const char*) {
         Log* l = static_cast<Log*>(user);
         l->ordered = l->ordered && fraction >= l->last;
         l->last = fraction;
         ++l->calls;
         return 0;
     };
-    settings.progress_user = &log;
+    settings.progress.user = &log;
     bake_lighting(scene, kCullingProbes, settings);
     CHECK(log.calls >= 1);
     CHECK(log.ordered);
     CHECK(log.last == 1.0f);
 
-    settings.progress = [](void*, float, const char*) { return 1; };
+    settings.progress.callback = [](void*, float, const char*) { return 1; };
     try {
         bake_lighting(scene, kCullingProbes, settings);
         FAIL("the bake was not cancelled");
