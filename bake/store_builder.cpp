@@ -376,8 +376,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     order_cells_for_locality(data);
     if (settings.occlusion) store_occlusion(settings, count, data);
     if (settings.scene) {
-        settings.progress.report(0.87f, "leak control");
-        add_leak_edges(*settings.scene, data);
+        add_leak_edges(*settings.scene, data, settings.threads, settings.progress.part(0.87f, 0.9f));
     }
     settings.progress.report(0.9f, "grid");
     build_start_grid(data);

@@ -19,6 +19,7 @@ struct BuildSettings {
     uint32_t flags = 0;              // TP_BUILD_* (the same bits as the store's kFlag*)
     double merge_tolerance = kDefaultMergeTolerance;  // fraction of the bounding-box diagonal
     double flat_tolerance = kDefaultFlatTolerance;    // fraction of the bounding-box diagonal
+    uint32_t threads = 0;            // leak control's rays (0 = all cores); the result does not depend on it
     Progress progress;
     // Optional scene data. occlusion: 4 bytes per input probe at occlusion_stride bytes (channels at
     // and above occlusion_lights are ignored); a merged probe stores the rounded mean of its group.

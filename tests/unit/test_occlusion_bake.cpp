@@ -12,6 +12,7 @@
 #include "core/store.h"
 #include "core/store_data.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -256,4 +257,25 @@ TEST_CASE("occlusion: a mixed light bakes only its bounced light, as a realtime 
     tp_light baked_light = mixed_point(5, 0, 0);
     baked_light.mode = TP_LIGHT_MODE_BAKED;
     CHECK(scene.add_light(baked_light) == 4);  // other modes are still welcome
+}
+
+TEST_CASE("occlusion: the same bytes on 1, 2 and 3 threads", "[occlusion][threads]") {
+    Scene scene;
+    add_wall(scene);
+    const double centre[3] = {-1.0, 0.3, 0.2};
+    add_sphere(scene, centre, 0.5);
+    scene.add_light(mixed_directional(1, 0, 0));
+    scene.add_light(mixed_point(-3, 0.2f, 0.1f));
+    const std::vector<float> probes = lattice(9, -2.0f, 2.0f, 0.05f);
+    std::vector<std::vector<uint8_t>> results;
+    for (uint32_t threads : {1u, 2u, 3u}) {
+        BakeSettings settings;
+        settings.threads = threads;
+        results.push_back(bake_occlusion(scene, probes, settings, nullptr));
+    }
+    // Some probes are shadowed and some are not, so equal bytes say something.
+    CHECK(std::count(results[0].begin(), results[0].end(), uint8_t(0)) > 0);
+    CHECK(std::count(results[0].begin(), results[0].end(), uint8_t(255)) > 0);
+    CHECK(results[1] == results[0]);
+    CHECK(results[2] == results[0]);
 }
