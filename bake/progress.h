@@ -1,6 +1,6 @@
 // Progress and cancel of long bake-time work (the bake, placement, occlusion, the store build): a plain
 // callback, the slice [from, to] of the caller's progress this work reports into, and one way to stop.
-// The C ABI's tp_progress_fn has the callback's signature and is adapted once, in capi/bake_structs.h.
+// The C ABI's tp_progress_fn has the callback's signature; the boundary adapts it once (progress_from_c).
 #pragma once
 
 namespace tetprobe {

@@ -184,27 +184,27 @@ void add_light(Scene& scene, const json& value, size_t index, const std::string&
     const std::string where = file + ": light " + std::to_string(index);
     only_keys(value, where, {"type", "mode", "shadows", "color", "intensity", "position", "direction", "range",
                              "inner_angle", "outer_angle", "name"});
-    tp_light light = default_c_light();
+    LightDescription light;
     if (!value.contains("type")) fail_at(where, "needs a \"type\"");
     const std::string type = text(value["type"], where + ": type");
-    if (type == "directional") light.type = TP_LIGHT_DIRECTIONAL;
-    else if (type == "point") light.type = TP_LIGHT_POINT;
-    else if (type == "spot") light.type = TP_LIGHT_SPOT;
+    if (type == "directional") light.type = LightType::directional;
+    else if (type == "point") light.type = LightType::point;
+    else if (type == "spot") light.type = LightType::spot;
     else fail_at(where, "unknown type \"" + type + "\" (directional, point or spot)");
     if (value.contains("mode")) {
         const std::string mode = text(value["mode"], where + ": mode");
-        if (mode == "baked") light.mode = TP_LIGHT_MODE_BAKED;
-        else if (mode == "realtime") light.mode = TP_LIGHT_MODE_REALTIME;
-        else if (mode == "mixed") light.mode = TP_LIGHT_MODE_MIXED;
+        if (mode == "baked") light.mode = LightMode::baked;
+        else if (mode == "realtime") light.mode = LightMode::realtime;
+        else if (mode == "mixed") light.mode = LightMode::mixed;
         else fail_at(where, "unknown mode \"" + mode + "\" (baked, realtime or mixed)");
     }
-    if (value.contains("shadows")) light.shadows = boolean(value["shadows"], where + ": shadows") ? 1 : 0;
-    if (value.contains("color")) vector3(value["color"], where + ": color", light.color);
+    if (value.contains("shadows")) light.shadows = boolean(value["shadows"], where + ": shadows");
+    if (value.contains("color")) vector3(value["color"], where + ": color", light.color.data());
     if (value.contains("intensity")) light.intensity = float(number(value["intensity"], where + ": intensity"));
-    if (value.contains("position")) vector3(value["position"], where + ": position", light.position);
-    else if (light.type != TP_LIGHT_DIRECTIONAL) fail_at(where, "needs a \"position\"");
-    if (value.contains("direction")) vector3(value["direction"], where + ": direction", light.direction);
-    else if (light.type != TP_LIGHT_POINT) fail_at(where, "needs a \"direction\"");
+    if (value.contains("position")) vector3(value["position"], where + ": position", light.position.data());
+    else if (light.type != LightType::directional) fail_at(where, "needs a \"position\"");
+    if (value.contains("direction")) vector3(value["direction"], where + ": direction", light.direction.data());
+    else if (light.type != LightType::point) fail_at(where, "needs a \"direction\"");
     if (value.contains("range")) {
         const json& range = value["range"];
         if (range.is_string() && range.get<std::string>() == "inf") light.range = INFINITY;

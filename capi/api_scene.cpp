@@ -99,7 +99,8 @@ TP_API tp_status tp_scene_add_light(tp_scene* scene, const tp_light* light, uint
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(light);
-    uint32_t index = scene->scene.add_light(*light);
+    const std::string label = "light " + std::to_string(scene->scene.lights().size());
+    uint32_t index = scene->scene.add_light(tetprobe::light_from_c(*light, label), label);
     if (out_light) *out_light = index;
     return TP_OK;
     TP_API_END

@@ -9,7 +9,6 @@
 #include "bake/probe_placement.h"
 #include "bake/probe_pruning.h"
 #include "bake/store_builder.h"
-#include "capi/struct_defaults.h"
 #include "core/error.h"
 #include "core/store.h"
 
@@ -29,8 +28,8 @@ Scene lit_room() {
     add_box(scene, {0, 0, 0}, {6, 3, 6}, false);
     add_box(scene, {2.5f, 0, 2.5f}, {3.5f, 3, 3.5f}, true);
     add_box(scene, {4.5f, 0, 0.5f}, {5.5f, 0.8f, 1.5f}, true);
-    tp_light lamp = default_c_light();
-    lamp.position[0] = 0.6f, lamp.position[1] = 2.4f, lamp.position[2] = 0.6f;
+    LightDescription lamp;
+    lamp.position = {0.6f, 2.4f, 0.6f};
     lamp.intensity = 30.0f;
     scene.add_light(lamp);
     return scene;
@@ -178,8 +177,8 @@ TEST_CASE("placement candidates: walkable bands end below the ceiling, inside th
     Scene scene;
     add_box(scene, {0, 0, 0}, {6, 3, 6}, false);
     add_box(scene, {2, 0, 2}, {4, 2, 4}, true);
-    tp_light lamp = default_c_light();
-    lamp.position[0] = 0.6f, lamp.position[1] = 2.4f, lamp.position[2] = 0.6f;
+    LightDescription lamp;
+    lamp.position = {0.6f, 2.4f, 0.6f};
     lamp.intensity = 30.0f;
     scene.add_light(lamp);
     CandidateRules rules;
