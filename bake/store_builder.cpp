@@ -28,7 +28,7 @@ namespace tetprobe {
 namespace {
 
 void check_settings(const BuildSettings& settings) {
-    if (settings.flags & ~uint32_t(TP_BUILD_NO_EXTRAPOLATION | TP_BUILD_INDEX32 | TP_BUILD_COMPACT)) {
+    if (settings.flags & ~kBuildFlags) {
         throw Error(Status::invalid_argument, "unknown build flags " + std::to_string(settings.flags));
     }
     if (!(settings.merge_tolerance >= 0 && settings.merge_tolerance <= 1)) {
@@ -312,15 +312,13 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     } else {
         hull.vertex_normals.assign(points.size(), Eigen::Vector3d::Zero());
     }
-    const bool extrapolate = !(settings.flags & TP_BUILD_NO_EXTRAPOLATION) && shape.dimension >= 1;
+    const bool extrapolate = !(settings.flags & kFlagNoExtrapolation) && shape.dimension >= 1;
     OuterCells outer;
     if (extrapolate) outer = build_outer_cells(mesh, hull);
 
     settings.progress.report(0.7f, "storing");
     StoreData data;
-    data.flags = ((settings.flags & TP_BUILD_NO_EXTRAPOLATION) ? kFlagNoExtrapolation : 0u) |
-                 ((settings.flags & TP_BUILD_INDEX32) ? kFlagIndex32 : 0u) |
-                 ((settings.flags & TP_BUILD_COMPACT) ? kFlagCompact : 0u);
+    data.flags = settings.flags;
     data.dimension = shape.dimension;
     data.axis = shape.dimension == 2 ? shape.dropped_axis() : shape.dimension == 1 ? shape.line_axis() : 0u;
     for (int a = 0; a < 3; ++a) data.origin[a] = origin[a];

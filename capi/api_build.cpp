@@ -34,7 +34,7 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
                               "options->struct_size " + std::to_string(options->struct_size) +
                                   " is too small (call tp_build_options_init)");
     }
-    settings.flags = options->flags;
+    settings.flags = options->flags;  // TP_BUILD_* are the store's kFlag* bits (boundary.h)
     if (TP_OPTION_FIELD(options, merge_tolerance)) settings.merge_tolerance = options->merge_tolerance;
     if (TP_OPTION_FIELD(options, flat_tolerance)) settings.flat_tolerance = options->flat_tolerance;
     if (TP_OPTION_FIELD(options, progress))
