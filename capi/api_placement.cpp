@@ -23,6 +23,11 @@ tp_status read_positions(const float* positions, size_t stride, size_t count, st
     return TP_OK;
 }
 
+static_assert(TP_PLACEMENT_WHOLE == uint32_t(tetprobe::PlacementMode::whole) &&
+                  TP_PLACEMENT_WALKABLE == uint32_t(tetprobe::PlacementMode::walkable),
+              "TP_PLACEMENT_* must equal PlacementMode");
+
+// The one reading of tp_placement_options.
 tp_status read_placement_options(const tp_placement_options* options, tetprobe::PlacementSettings& settings) {
     if (!options) return TP_OK;
     if (options->struct_size < sizeof(tp_placement_options))

@@ -27,6 +27,7 @@ tp_status read_positions(const float* positions, size_t stride, size_t count, st
     return TP_OK;
 }
 
+// The one reading of tp_bake_options (tp_bake, tp_bake_plan, tp_bake_occlusion).
 tp_status read_options(const tp_bake_options* options, tetprobe::BakeSettings& settings) {
     if (!options) return TP_OK;
     if (options->struct_size < sizeof(tp_bake_options))
