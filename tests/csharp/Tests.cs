@@ -505,7 +505,7 @@ static class Tests
         foreach (Action<string> test in new Action<string>[] {
                      s => Layout(), s => ShHelpers(), s => ShOptions(), s => Queries(), s => LayoutsAndBatchOptions(), RoundTrips,
                      s => Volumes(), s => HeaderCheck.Run(header), s => SceneTests.Run(scenes), StoreTests.Run,
-                     s => VersionTests.Run() })
+                     s => PlacementTests.Run(), s => VersionTests.Run() })
         {
             try
             {
