@@ -1,17 +1,62 @@
 // tetprobe_bench levels ...: the real-level benchmark (Quake 3 levels of Debian's openarena-081-maps,
-// extracted into the build tree by samples/bench/setup_levels.sh).
+// extracted into the build tree by samples/bench/setup_levels.sh; `make bench` runs it through run_levels.sh).
 //
+//   tetprobe_bench levels [run] [--levels default|all|A,B,...] [--out DIR] [--quick]
+//       The part of the report: on each level, tetprobe's probe choices (probe_choices.h) in every store
+//       layout (store_layouts.h) at each probe count, the peers (level_peers.h) at the bytes of each
+//       tetprobe layout's placed store, all measured with the one metric (level_metric.h). Writes
+//       DIR/levels.json (after every level) and prints a table per level.
 //   tetprobe_bench levels eval --level NAME --probes FILE.csv [--layout ID] [--json]
 //       One probe set (x,y,z per line) on one level: baked with the level's probe settings, built with
-//       the store layout (default: every layout), measured with the level's metric (level_metric.h).
-//       Prints a table, or with --json one JSON object (the "results" rows of levels.json below).
-//   tetprobe_bench levels prepare --level NAME...
-//       Only prepares the levels' caches (playable space, evaluation points, reference, paths).
+//       the store layout (default: every layout), measured with the level's metric. Prints a table, or with
+//       --json {"level": <level fields below, without results>, "probe_file": str, "results": [<result>]}.
+//   tetprobe_bench levels prepare --level NAME...   only prepares (and caches) the levels
+//   tetprobe_bench levels survey                    every level of --maps: triangles, lights, spawns, size
 //
 // Common options: --maps DIR (the .bsp files; default build/levels/maps), --cache DIR (the prepared
 // levels; default build/levels/cache; "" for none), --threads N (0 = all cores). A level is a name in
-// --maps or a path to a .bsp file. The first use of a level bakes its reference (about a minute on two
+// --maps or a path to a .bsp file. The first use of a level bakes its reference (tens of seconds on two
 // cores); later uses read it from the cache, so an evaluation takes its own bake and queries only.
+//
+// levels.json (stable: fields may be added, none renamed or removed)
+// {
+//   "schema": "tetprobe-bench-levels/1", "machine": {...as every part},
+//   "settings": {"reference_rays", "probe_rays", "bounces": int, "points", "noise_points": int,
+//                "light_clearance", "frame_step": float, "paths": int, "counts": [int], "random_seeds": int,
+//                "space": {"spacing", "layer": float, "band": [min, max], "floor_cosine", "clearance": float},
+//                "placement": {"mode": str, "spacing": float, "band": [min, max], "rays": int, "error_bound": 0},
+//                "layouts": [{"id": str, "label": str}]},
+//   "metric": str, "import": str,           // the definitions, in words
+//   "all_levels": [str], "default_levels": [str],
+//   "levels": [{
+//     "name": str, "not_run": str,          // only "name" and "not_run" when the level failed
+//     "file": str, "title": str, "triangles": int, "lights": int, "light_entities": int,
+//     "faces": {"total", "polygons", "meshes", "patches", "brush_model", "billboards_left_out", "sky_left_out",
+//               "nodraw_left_out", "liquid_or_fog_left_out", "nonsolid_left_out": int},
+//     "playable": {"band_points", "free_points", "reachable_points", "spawns_used", "spawns_given": int,
+//                  "box_min": [3], "box_max": [3]},
+//     "points": int, "mean_irradiance": float,
+//     "reference_noise": {"points": int, "rms": float, "p95": float},
+//     "paths": int, "path_frames": int,
+//     "prepare_seconds": {"space": float, "reference": float, "from_cache": bool},
+//     "candidates": {"count": int, "spacing": float, "find_seconds": float, "bake_seconds": float},
+//     "results": [{                          // <result>
+//       "method": "tetprobe_placed" | "tetprobe_random" | "tetprobe_lattice" | "tetprobe_all" | "tetprobe_given"
+//               | "grid_half" | "grid_apv8" | "bricks_apv8" | "knn4" | "knn4_damped",
+//       "layout": str,                       // tetprobe: a store layout id; peers: "half" | "apv8"
+//       "label": str, "probes": int,         // bricks: samples baked
+//       "bytes": int, "resident_bytes": int, // what ships; what the loaded method holds
+//       "rms_error", "p95_error", "max_error", "worst_jump", "ns_per_query": float,
+//       "placement_seconds", "bake_seconds", "build_seconds": float,  // tetprobe choices: bake_seconds is the
+//                                            // candidates' bake time per probe times the probes
+//       "target": int | null,                // tetprobe and knn: the probe count asked for (null: all candidates)
+//       "seeds": int,                        // tetprobe_random: the results are means over this many subsamples
+//       "probe_set": "placed",               // knn: the probes it blends
+//       "budget_bytes": int, "budget_of": str,  // peers: the budget and whose bytes it is ("tetprobe placed compact 400")
+//       "note": str}],
+//     "skipped": [{"method": str, "budget_bytes" | "target": int, "why": str}]
+//   }]
+// }
 #include "bench.h"
 
 #include "level_peers.h"

@@ -54,6 +54,8 @@ KnnPeer::KnnPeer(const std::vector<float>& positions, const std::vector<float>& 
     const float half_diagonal = 0.5f * std::sqrt(box_cell[0] * box_cell[0] + box_cell[1] * box_cell[1] + box_cell[2] * box_cell[2]);
     const size_t cells = size_t(box_dims_[0]) * box_dims_[1] * box_dims_[2];
     std::vector<uint32_t> starts(1, 0), lists;  // kept aside while nearest() still uses the ring search
+    std::vector<float> centre_distances;
+    list_half_diagonal_ = half_diagonal * 1.00001f + 1e-6f;
     for (size_t c = 0; c < cells; ++c) {
         const int i[3] = {int(c % size_t(box_dims_[0])), int(c / size_t(box_dims_[0]) % size_t(box_dims_[1])),
                           int(c / (size_t(box_dims_[0]) * box_dims_[1]))};
@@ -69,19 +71,25 @@ KnnPeer::KnnPeer(const std::vector<float>& positions, const std::vector<float>& 
         // Every query in the cell has its k-th nearest within this (d_k is 1-Lipschitz); a 1e-5 relative
         // slack covers the float rounding of the distances compared.
         const float reach = (distances[found - 1] + half_diagonal) * 1.00001f + 1e-6f;
+        std::vector<std::pair<float, uint32_t>> members;  // (distance to the centre, probe)
         for (size_t p = 0; p < count; ++p) {
-            float d2 = 0;
+            float d2 = 0, c2 = 0;
             for (int k = 0; k < 3; ++k) {
                 const float v = positions[3 * p + k];
                 const float gap = std::max(std::max(cell_lo[k] - v, v - cell_hi[k]), 0.0f);
                 d2 += gap * gap;
+                c2 += (v - centre[k]) * (v - centre[k]);
             }
-            if (d2 <= reach * reach) lists.push_back(uint32_t(p));
+            if (d2 <= reach * reach) members.push_back({std::sqrt(c2), uint32_t(p)});
         }
+        // Nearest the centre first: a scan stops once no later probe can beat the 4th found.
+        std::sort(members.begin(), members.end());
+        for (const auto& m : members) lists.push_back(m.second), centre_distances.push_back(m.first);
         starts.push_back(uint32_t(lists.size()));
     }
     list_start_ = std::move(starts);
     list_probes_ = std::move(lists);
+    list_centre_distance_ = std::move(centre_distances);
 }
 
 int KnnPeer::nearest(const float position[3], uint32_t out_probes[kNeighbours], float out_distances[kNeighbours]) const {
@@ -95,6 +103,9 @@ int KnnPeer::nearest(const float position[3], uint32_t out_probes[kNeighbours], 
         float best_d2[kNeighbours];
         int found = 0;
         for (uint32_t s = list_start_[cell]; s < list_start_[cell + 1]; ++s) {
+            // |p - q| >= |p - centre| - |q - centre| >= |p - centre| - half diagonal.
+            const float bound = list_centre_distance_[s] - list_half_diagonal_;
+            if (found == kNeighbours && bound > 0 && bound * bound > best_d2[kNeighbours - 1]) break;
             const uint32_t p = list_probes_[s];
             const float dx = positions_[3 * p] - position[0], dy = positions_[3 * p + 1] - position[1],
                         dz = positions_[3 * p + 2] - position[2];
@@ -179,7 +190,7 @@ size_t KnnPeer::bytes() const {
     const size_t index = probe_count() <= 65536 ? sizeof(uint16_t) : sizeof(uint32_t);
     return positions_.size() * sizeof(float) + halves_.size() * sizeof(uint16_t) +
            bucket_start_.size() * sizeof(uint32_t) + bucket_probes_.size() * index +
-           list_start_.size() * sizeof(uint32_t) + list_probes_.size() * index + 18 * sizeof(float);
+           list_start_.size() * sizeof(uint32_t) + list_probes_.size() * (index + sizeof(float)) + 19 * sizeof(float);
 }
 
 double KnnPeer::mean_candidates() const {

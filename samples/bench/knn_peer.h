@@ -2,7 +2,9 @@
 // distance weights. A query inside the acceleration box (the probes' bounds, grown to a given query box)
 // scans its cell's candidate list: every probe whose distance to the cell is within an upper bound of the
 // 4th-nearest distance anywhere in the cell (the 4th-nearest distance of the cell's centre plus half the
-// cell's diagonal), so the scan finds exactly the 4 nearest; outside it, a ring search over a bucket grid.
+// cell's diagonal), nearest the cell's centre first so that the scan stops once no later probe can be
+// nearer than the 4th found: it finds exactly the 4 nearest; outside the box, a ring search over a bucket
+// grid.
 // SH are kept as 27 halves per probe, like the store and the grid peer.
 #pragma once
 
@@ -26,7 +28,8 @@ public:
     int nearest(const float position[3], uint32_t out_probes[kNeighbours], float out_distances[kNeighbours]) const;
     // Weights 1/d over the nearest probes (normalised); at a probe (d = 0) that probe alone.
     void interpolate(const float position[3], float out_sh[27]) const;
-    // Positions, halves, the candidate lists (offsets and 16-bit indices while probes fit, else 32-bit) and the
+    // Positions, halves, the candidate lists (offsets; 16-bit indices while probes fit, else 32-bit; a float
+    // distance to the centre each) and the
     // bucket grid of the search outside them, plus a small header.
     size_t bytes() const;
     double mean_candidates() const;  // probes a list holds on average
@@ -45,7 +48,9 @@ private:
     float box_lo_[3], box_hi_[3], box_inv_cell_[3];
     int box_dims_[3];
     std::vector<uint32_t> list_start_;  // cells + 1
-    std::vector<uint32_t> list_probes_;
+    std::vector<uint32_t> list_probes_;        // each cell's, nearest its centre first
+    std::vector<float> list_centre_distance_;  // of each entry
+    float list_half_diagonal_ = 0;             // of a cell, rounded up
 };
 
 // Exponential smoothing of one object's blended SH from frame to frame: out = out + alpha (in - out),
