@@ -54,6 +54,12 @@ def equal_memory(level):
     return rows
 
 
+def level_title(level):
+    """'aggressor (3,271 triangles, 84 light entities + sun)'."""
+    return "%s (%s triangles, %s light entities + sun)" % (level["name"], _num(level.get("triangles")),
+                                                          _num(level.get("light_entities")))
+
+
 def summary_rows(doc, layout="compact"):
     """One table row per level and probe count, for the README: the given layout."""
     out = []
@@ -66,7 +72,7 @@ def summary_rows(doc, layout="compact"):
                 continue
             peer, choice, placed = row["best_peer"], row["best_choice"], row["placed"]
             out.append([
-                "%s (%s tris, %s lights)" % (level["name"], _num(level.get("triangles")), _num(level.get("lights"))),
+                level_title(level),
                 _num(row["target"]),
                 "%s (%s)" % (_num(row["bytes"]), _num(row["resident_bytes"])),
                 "%s / %s" % (_num(placed["rms_error"]), _num(placed["p95_error"])),

@@ -239,7 +239,8 @@ def test_real_levels_summary_is_the_best_grid_peer_over_tetprobe_at_equal_memory
     ratios = _section(text, "## 8. Headline ratios")
     assert "best grid peer / tetprobe placed at equal memory (RMS), fixture_arena, 100 probes, compact" in ratios
     digest = (tmp_path / "readme_section.md").read_text()
-    assert "| fixture_arena (%s tris, %s lights) | 100 |" % (report.num(level["triangles"]), level["lights"]) in digest
+    assert "| fixture_arena (%s triangles, %s light entities + sun) | 100 |" % (
+        report.num(level["triangles"]), level["light_entities"]) in digest
 
 
 def test_a_real_level_or_peer_that_did_not_run_is_said(tmp_path, no_plots):
