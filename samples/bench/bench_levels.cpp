@@ -128,7 +128,8 @@ const char* const kMetricText =
     "space (grid points of the walkable band 0.2-2 m above floors, not inside geometry, flood-filled from the spawn "
     "points; each moved by up to half a grid step), at least light_clearance from every point light. Reference: a bake "
     "at each point with reference_rays; reference_noise: a second seed against it. worst_jump: the largest change of E "
-    "(any axis normal) between consecutive frames along walking paths between spawn points (frame_step metres a frame), "
+    "(any axis normal) between consecutive frames along walking paths, each the shortest way along the flood fill from a "
+    "spawn point to the farthest spawn point it reaches (frame_step metres a frame), "
     "over the mean. ns_per_query: single queries along the paths, each object keeping its hint or state, median of 5 runs. "
     "bytes: what ships (a store's blob; a peer's run-time arrays); resident_bytes: what the loaded method holds.";
 const char* const kImportText =
