@@ -42,7 +42,7 @@ tsan: deps
 fuzz-build: deps
 	cmake -S . -B $(BUILD)-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETPROBE_FUZZ=ON \
 	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
-	cmake --build $(BUILD)-fuzz -j $(JOBS) --target fuzz_load fuzz_build
+	cmake --build $(BUILD)-fuzz -j $(JOBS) --target fuzz_load fuzz_build fuzz_bsp
 
 fuzz-short: fuzz-build
 	bash tests/fuzz/run.sh $(BUILD)-fuzz short
