@@ -8,7 +8,8 @@
 //       DIR/levels.json (after every level) and prints a table per level.
 //   tetprobe_bench levels eval --level NAME --probes FILE.csv [--layout ID] [--json]
 //       One probe set (x,y,z per line) on one level: baked with the level's probe settings, built with
-//       the store layout (default: every layout), measured with the level's metric. Prints a table, or with
+//       the store layout (default: every layout of store_layouts.h; --layout also takes fast_leak and
+//       compact_leak, leak control), measured with the level's metric. Prints a table, or with
 //       --json {"level": <level fields below, without results>, "probe_file": str, "results": [<result>]}.
 //   tetprobe_bench levels prepare --level NAME...   only prepares (and caches) the levels
 //   tetprobe_bench levels survey                    every level of --maps: triangles, lights, spawns, size
