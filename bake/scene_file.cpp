@@ -12,6 +12,8 @@
 //   "probe_grids": [ {"min": [x,y,z], "max": [x,y,z], "counts": [nx,ny,nz]} ]  (appended to probes).
 #include "bake/scene_file.h"
 
+#include "bake/quake3_bsp.h"
+#include "bake/quake3_scene.h"
 #include "core/error.h"
 
 #define TINYOBJLOADER_IMPLEMENTATION
@@ -261,9 +263,16 @@ Scene load_scene_file(const std::string& path) {
     if (!in) throw Error(Status::io, "cannot read scene file '" + path + "'");
     std::stringstream contents;
     contents << in.rdbuf();
+    // Other formats by their magic bytes: a Quake 3 level (bake/quake3_scene.h).
+    const std::string bytes = contents.str();
+    if (looks_like_quake3_bsp(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())) {
+        Scene scene;
+        add_quake3_level(scene, parse_quake3_bsp(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), path));
+        return scene;
+    }
     json root;
     try {
-        root = json::parse(contents.str());
+        root = json::parse(bytes);
     } catch (const json::parse_error& e) {
         throw Error(Status::scene, path + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + e.what());
     }

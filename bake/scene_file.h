@@ -1,5 +1,6 @@
 // Scene files: JSON (nlohmann-json) with meshes inline or from OBJ files (tinyobjloader) relative
 // to the JSON file, lights, a sky and probe positions. The format is documented in scene_file.cpp.
+// A file starting with the magic "IBSP" is read as a Quake 3 level instead (bake/quake3_scene.h).
 #pragma once
 
 #include "bake/scene.h"

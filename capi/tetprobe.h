@@ -416,7 +416,8 @@ TP_API tp_status tp_light_init(tp_light* light);
 TP_API tp_status tp_scene_create(tp_scene** out_scene);
 TP_API tp_status tp_scene_release(tp_scene* scene);
 
-/** Loads a JSON scene file (meshes inline or from OBJ files relative to it, lights, sky, probes). */
+/** Loads a JSON scene file (meshes inline or from OBJ files relative to it, lights, sky, probes), or a
+    Quake 3 level (a .bsp file, IBSP version 46; conventions in the README). */
 TP_API tp_status tp_scene_load_file(const char* path, tp_scene** out_scene);
 
 /** Adds a triangle mesh. vertices: 3 floats each; indices: 3 per triangle. materials: material_count
