@@ -11,7 +11,6 @@
 #include <cstring>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 namespace tetprobe {
@@ -22,17 +21,11 @@ const Store& store_of(const tp_store* handle) { return *handle->store; }
 
 bool finite3(const float p[3]) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
-template <class T>
-T* strided(T* base, size_t index, size_t stride) {
-    using Byte = typename std::conditional<std::is_const<T>::value, const unsigned char, unsigned char>::type;
-    return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + index * stride);
-}
-
 // Positions are validated once, before any query of a batch runs.
 void require_finite_positions(const float* positions, size_t count, size_t stride) {
     for (size_t i = 0; i < count; ++i) {
         float p[3];
-        std::memcpy(p, strided(positions, i, stride), sizeof p);
+        std::memcpy(p, element_at(positions, i, stride), sizeof p);
         if (!finite3(p))
             throw Error(Status::invalid_argument, "positions[" + std::to_string(i) + "] is not finite");
     }
@@ -82,13 +75,13 @@ tp_status interpolate_batch(const tp_store* store, size_t count, const float* po
     TP_REQUIRE_NOT_NULL(store);
     const BatchSettings settings = batch_settings(options);
     if (count == 0) return TP_OK;
-    TP_REQUIRE_NOT_NULL(positions);
-    TP_REQUIRE_NOT_NULL(out_sh);
-    if (with_occlusion) TP_REQUIRE_NOT_NULL(out_occlusion);
-    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
-    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
-    sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
-    if (with_occlusion) occlusion_stride = resolve_stride(occlusion_stride, 4 * sizeof(float), "occlusion_stride");
+    position_stride = checked_buffer(positions, "positions", count, "count", position_stride, "position_stride",
+                                     3 * sizeof(float));
+    if (hints) hint_stride = checked_buffer(hints, "hints", count, "count", hint_stride, "hint_stride", sizeof(int32_t));
+    sh_stride = checked_buffer(out_sh, "out_sh", count, "count", sh_stride, "sh_stride", 27 * sizeof(float));
+    if (with_occlusion)
+        occlusion_stride = checked_buffer(out_occlusion, "out_occlusion", count, "count", occlusion_stride,
+                                          "occlusion_stride", 4 * sizeof(float));
     require_finite_positions(positions, count, position_stride);
     size_t first_outside = count;
     const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
@@ -110,6 +103,7 @@ TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_sto
     TP_REQUIRE_NOT_NULL(out_store);
     *out_store = nullptr;
     if (!data) return fail(TP_ERROR_INVALID_ARGUMENT, "data is NULL");
+    checked_packed(data, "data", size, "size", 1);
     std::unique_ptr<tp_store> handle(new tp_store);
     handle->store = Store::load(data, size);
     *out_store = handle.release();
@@ -290,21 +284,23 @@ TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, con
     TP_REQUIRE_NOT_NULL(store);
     const BatchSettings settings = batch_settings(options);
     if (count == 0) return TP_OK;
-    TP_REQUIRE_NOT_NULL(positions);
-    TP_REQUIRE_NOT_NULL(out_probes);
-    TP_REQUIRE_NOT_NULL(out_weights);
-    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
-    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
-    probes_stride = resolve_stride(probes_stride, 4 * sizeof(uint32_t), "probes_stride");
-    weights_stride = resolve_stride(weights_stride, 4 * sizeof(float), "weights_stride");
+    position_stride = checked_buffer(positions, "positions", count, "count", position_stride, "position_stride",
+                                     3 * sizeof(float));
+    if (hints) hint_stride = checked_buffer(hints, "hints", count, "count", hint_stride, "hint_stride", sizeof(int32_t));
+    probes_stride = checked_buffer(out_probes, "out_probes", count, "count", probes_stride, "probes_stride",
+                                   4 * sizeof(uint32_t));
+    weights_stride = checked_buffer(out_weights, "out_weights", count, "count", weights_stride, "weights_stride",
+                                    4 * sizeof(float));
     require_finite_positions(positions, count, position_stride);
     const Store& s = store_of(store);
     size_t first_outside = count;
     const Status status = s.weights_batch(count, positions, position_stride, hints, hint_stride, out_probes,
                                           probes_stride, out_weights, weights_stride, settings, &first_outside);
     for (size_t i = 0; i < count; ++i) {  // stored probes to the input probes the caller knows
-        uint32_t* probes = strided(out_probes, i, probes_stride);
+        uint32_t probes[4];
+        std::memcpy(probes, element_at(out_probes, i, probes_stride), sizeof probes);
         for (int k = 0; k < 4; ++k) probes[k] = s.probe_source(probes[k]);
+        std::memcpy(element_at(out_probes, i, probes_stride), probes, sizeof probes);
     }
     return report_outside(status, first_outside);
     TP_API_END

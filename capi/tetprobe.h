@@ -354,7 +354,8 @@ TP_API tp_status tp_sh_nonnegative_window_strength(const float sh[27], const tp_
 #define TP_LIGHT_POINT 1u
 #define TP_LIGHT_SPOT 2u
 
-/** Upper bound of the planes a volume built from plane_count planes may have. */
+/** Upper bound of the planes a volume built from plane_count planes may have (SIZE_MAX when that bound
+    does not fit in a size_t). */
 TP_API size_t tp_shadow_caster_volume_bound(size_t plane_count);
 
 /** Builds the volume of everything that can cast a shadow from a light into the convex polyhedron

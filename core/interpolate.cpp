@@ -34,11 +34,10 @@ void blend_occlusion(const Store::Impl& s, const Location& loc, float out[4]) {
     }
 }
 
-template <class T>
-T* strided(T* base, size_t i, size_t stride) {
-    using Byte = typename std::conditional<std::is_const<T>::value, const uint8_t, uint8_t>::type;
-    return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + i * stride);
-}
+// Element i of a caller's strided buffer, as bytes: strides need no alignment, so every element is
+// read and written with memcpy, never through a typed pointer.
+const uint8_t* strided(const void* base, size_t i, size_t stride) { return static_cast<const uint8_t*>(base) + i * stride; }
+uint8_t* strided(void* base, size_t i, size_t stride) { return static_cast<uint8_t*>(base) + i * stride; }
 
 // Queries located before any is answered: their walks are independent, so the processor overlaps
 // them, and the cells of the group after next are prefetched.
@@ -147,15 +146,16 @@ Status Store::interpolate_batch(size_t count, const float* positions, size_t pos
     const Impl& s = *impl_;
     return run_batch(s, count, positions, position_stride, hints, hint_stride, settings, first_outside,
                      [&](size_t i, const Location& loc) {
-                         float* out = strided(out_sh, i, sh_stride);
-                         float* occlusion = out_occlusion ? strided(out_occlusion, i, occlusion_stride) : nullptr;
-                         if (loc.status != Status::ok) {
-                             std::fill(out, out + 27, 0.0f);
-                             if (occlusion) std::fill(occlusion, occlusion + kOcclusionChannels, 0.0f);
+                         float sh[27], occlusion[kOcclusionChannels];
+                         if (loc.status == Status::ok) {
+                             blend(s, loc, sh);
+                             if (out_occlusion) blend_occlusion(s, loc, occlusion);
                          } else {
-                             blend(s, loc, out);
-                             if (occlusion) blend_occlusion(s, loc, occlusion);
+                             std::fill(sh, sh + 27, 0.0f);
+                             std::fill(occlusion, occlusion + kOcclusionChannels, 0.0f);
                          }
+                         std::memcpy(strided(out_sh, i, sh_stride), sh, sizeof sh);
+                         if (out_occlusion) std::memcpy(strided(out_occlusion, i, occlusion_stride), occlusion, sizeof occlusion);
                      });
 }
 
@@ -164,12 +164,12 @@ Status Store::weights_batch(size_t count, const float* positions, size_t positio
                             size_t weights_stride, const BatchSettings& settings, size_t* first_outside) const {
     return run_batch(*impl_, count, positions, position_stride, hints, hint_stride, settings, first_outside,
                      [&](size_t i, const Location& loc) {
-                         uint32_t* probes = strided(out_probes, i, probes_stride);
-                         float* weights = strided(out_weights, i, weights_stride);
-                         for (int k = 0; k < 4; ++k) {
-                             probes[k] = loc.status == Status::ok ? loc.probes[k] : 0;
-                             weights[k] = loc.status == Status::ok ? loc.weights[k] : 0.0f;
-                         }
+                         uint32_t probes[4] = {0, 0, 0, 0};
+                         float weights[4] = {0, 0, 0, 0};
+                         if (loc.status == Status::ok)
+                             for (int k = 0; k < 4; ++k) probes[k] = loc.probes[k], weights[k] = loc.weights[k];
+                         std::memcpy(strided(out_probes, i, probes_stride), probes, sizeof probes);
+                         std::memcpy(strided(out_weights, i, weights_stride), weights, sizeof weights);
                      });
 }
 

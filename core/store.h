@@ -67,7 +67,8 @@ public:
     Status interpolate(const float world_position[3], int32_t* hint, float out_sh[27],
                        float out_occlusion[4] = nullptr) const;
 
-    // count queries at byte strides (already resolved, > 0); hints may be null. Returns ok, or
+    // count queries at byte strides (already resolved, > 0; no alignment needed: every element is
+    // copied with memcpy); hints may be null. Returns ok, or
     // outside with *first_outside the index of the first query outside (its SH and weights zero).
     // out_occlusion (may be null): 4 floats per query at occlusion_stride bytes, as interpolate's.
     Status interpolate_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,

@@ -751,3 +751,11 @@ TEST_CASE("a neighbour that does not share the facet is refused", "[store_blob]"
     REQUIRE(try_load(write_store_blob(cloud), nullptr, &message) == Status::invalid_blob);
     CHECK(message.find("does not share the facet") != std::string::npos);
 }
+
+TEST_CASE("a size that cannot be rounded up to a whole cache line is refused before anything is written", "[store_blob]") {
+    // The copy's size used to be rounded up to 64 bytes with a wrap for sizes from SIZE_MAX - 62 up:
+    // a zero-byte allocation, then a write before it.
+    const std::vector<uint8_t> blob = write_store_blob(golden_store_data());
+    for (const size_t size : {SIZE_MAX, SIZE_MAX - 1, SIZE_MAX - 62, SIZE_MAX - 63})
+        REQUIRE_THROWS_AS(Store::load(blob.data(), size), std::bad_alloc);
+}
