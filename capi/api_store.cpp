@@ -31,10 +31,25 @@ void require_finite_positions(const float* positions, size_t count, size_t strid
     }
 }
 
-tp_status report_outside(Status status, size_t first) {
+const char* const kOutsideMessage = "position is outside the probes' hull (store built without extrapolation)";
+const char* const kGaveUpMessage =
+    "the query gave up after examining its cap of cells: the store's tessellation is inconsistent (a corrupt or "
+    "forged blob; a store this library built never gets here)";
+
+// A single query's failure.
+tp_status report_query(Status status) {
     if (status == Status::ok) return TP_OK;
-    return fail(status, "positions are outside the probes' hull (store built without extrapolation); the first at index " +
-                            std::to_string(first) + " (their SH and weights are zero)");
+    return fail(status, status == Status::outside ? kOutsideMessage : kGaveUpMessage);
+}
+
+// A batch's: the first failed query, named.
+tp_status report_batch(Status status, size_t first) {
+    if (status == Status::ok) return TP_OK;
+    if (status == Status::outside)
+        return fail(status, "positions are outside the probes' hull (store built without extrapolation); the first at "
+                            "index " + std::to_string(first) + " (their SH and weights are zero)");
+    return fail(status, std::string(kGaveUpMessage) + "; the first at index " + std::to_string(first) +
+                            " (the SH and weights of failed queries are zero)");
 }
 
 tp_batch_options default_batch_options() {
@@ -56,8 +71,6 @@ BatchSettings batch_settings(const tp_batch_options* options) {
     settings.threads = options->threads > 1 ? options->threads : 1;
     return settings;
 }
-
-const char* const kOutsideMessage = "position is outside the probes' hull (store built without extrapolation)";
 
 // Fills a location's public form with input-probe indices.
 void to_input_probes(const Store& store, const Location& loc, uint32_t probes[4], float weights[4]) {
@@ -87,7 +100,7 @@ tp_status interpolate_batch(const tp_store* store, size_t count, const float* po
     const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
                                                             out_sh, sh_stride, settings, &first_outside,
                                                             out_occlusion, occlusion_stride);
-    return report_outside(status, first_outside);
+    return report_batch(status, first_outside);
 }
 
 }  // namespace
@@ -213,8 +226,7 @@ TP_API tp_status tp_store_interpolate(const tp_store* store, const float positio
     TP_REQUIRE_NOT_NULL(out_sh);
     if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
     const Status status = store_of(store).interpolate(position, cell_hint, out_sh);
-    if (status != Status::ok) return fail(status, kOutsideMessage);
-    return TP_OK;
+    return report_query(status);
     TP_API_END
 }
 
@@ -227,8 +239,7 @@ TP_API tp_status tp_store_interpolate_occlusion(const tp_store* store, const flo
     TP_REQUIRE_NOT_NULL(out_occlusion);
     if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
     const Status status = store_of(store).interpolate(position, cell_hint, out_sh, out_occlusion);
-    if (status != Status::ok) return fail(status, kOutsideMessage);
-    return TP_OK;
+    return report_query(status);
     TP_API_END
 }
 
@@ -271,8 +282,7 @@ TP_API tp_status tp_store_weights(const tp_store* store, const float position[3]
     const Location loc = s.locate(position, cell_hint ? *cell_hint : -1);
     if (cell_hint) *cell_hint = loc.cell;
     to_input_probes(s, loc, out_probes, out_weights);
-    if (loc.status != Status::ok) return fail(loc.status, kOutsideMessage);
-    return TP_OK;
+    return report_query(loc.status);
     TP_API_END
 }
 
@@ -302,7 +312,7 @@ TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, con
         for (int k = 0; k < 4; ++k) probes[k] = s.probe_source(probes[k]);
         std::memcpy(element_at(out_probes, i, probes_stride), probes, sizeof probes);
     }
-    return report_outside(status, first_outside);
+    return report_batch(status, first_outside);
     TP_API_END
 }
 
@@ -328,8 +338,7 @@ TP_API tp_status tp_store_locate(const tp_store* store, const float position[3],
     to_input_probes(s, loc, full.probes, full.weights);
     full.t = loc.t;
     copy_fitting_fields(location, full, location->struct_size);
-    if (loc.status != Status::ok) return fail(loc.status, kOutsideMessage);
-    return TP_OK;
+    return report_query(loc.status);
     TP_API_END
 }
 

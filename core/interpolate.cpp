@@ -44,10 +44,10 @@ uint8_t* strided(void* base, size_t i, size_t stride) { return static_cast<uint8
 constexpr size_t kGroup = kMaxGroup;
 
 // Runs the queries [begin, end) in groups: locate each (reading and writing the hints), then hand
-// every location to answer(i, loc). Returns the first index that was outside (or end).
+// every location to answer(i, loc). Returns the first index that failed (or end), its status in *failure.
 template <class Answer>
 size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* positions, size_t position_stride,
-                 int32_t* hints, size_t hint_stride, bool chain_hints, Answer answer) {
+                 int32_t* hints, size_t hint_stride, bool chain_hints, Answer answer, Status* failure) {
     size_t first_outside = end;
     int32_t chained = -1;
     Location located[kGroup];
@@ -83,7 +83,7 @@ size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* po
             const size_t i = group + j;
             if (hints) std::memcpy(strided(hints, i, hint_stride), &located[j].cell, sizeof located[j].cell);
             if (located[j].status != Status::ok) {
-                if (first_outside == end) first_outside = i;
+                if (first_outside == end) first_outside = i, *failure = located[j].status;
             } else if (s.leak_offsets) {
                 weigh_by_visibility(s, located[j]);
             }
@@ -102,10 +102,11 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     const size_t threads =
         std::max<size_t>(1, std::min<size_t>(settings.threads, (count + kQueriesPerThread - 1) / kQueriesPerThread));
     std::vector<size_t> outside(threads, count);
+    std::vector<Status> failure(threads, Status::ok);
     auto range = [&](size_t t) {
         const size_t begin = count * t / threads, end = count * (t + 1) / threads;
         const size_t first = run_range(s, begin, end, positions, position_stride, hints, hint_stride,
-                                       settings.chain_hints, answer);
+                                       settings.chain_hints, answer, &failure[t]);
         outside[t] = first < end ? first : count;
     };
     if (threads == 1) {
@@ -117,9 +118,9 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
         range(0);
         for (std::thread& thread : pool) thread.join();
     }
-    const size_t first = *std::min_element(outside.begin(), outside.end());
-    if (first_outside) *first_outside = first;
-    return first < count ? Status::outside : Status::ok;
+    const size_t t = size_t(std::min_element(outside.begin(), outside.end()) - outside.begin());
+    if (first_outside) *first_outside = outside[t];
+    return outside[t] < count ? failure[t] : Status::ok;
 }
 
 }  // namespace

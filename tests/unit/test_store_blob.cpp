@@ -10,6 +10,7 @@
 #include "probe_families.h"
 
 #include "bake/store_builder.h"
+#include "core/coordinate_limits.h"
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_data.h"
@@ -758,4 +759,144 @@ TEST_CASE("a size that cannot be rounded up to a whole cache line is refused bef
     const std::vector<uint8_t> blob = write_store_blob(golden_store_data());
     for (const size_t size : {SIZE_MAX, SIZE_MAX - 1, SIZE_MAX - 62, SIZE_MAX - 63})
         REQUIRE_THROWS_AS(Store::load(blob.data(), size), std::bad_alloc);
+}
+
+namespace {
+
+// A valid blob with one header field replaced and the checksum recomputed: a forged blob.
+template <class T>
+std::vector<uint8_t> forged(std::vector<uint8_t> blob, size_t offset, T value) {
+    std::memcpy(blob.data() + offset, &value, sizeof value);
+    repair_checksum(blob);
+    return blob;
+}
+
+void require_refused(const std::vector<uint8_t>& blob, const char* words) {
+    std::string message;
+    REQUIRE(try_load(blob, nullptr, &message) == Status::invalid_blob);
+    INFO(message);
+    CHECK(message.find(words) != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("the loader refuses an origin, bounds or normals the builder never writes", "[store_blob]") {
+    const std::vector<uint8_t> valid = write_store_blob(built(families::random_cloud(200, 41, 50, 1e4)));
+    REQUIRE(try_load(valid) == Status::ok);
+    const size_t origin = offsetof(StoreHeader, origin), bounds_min = offsetof(StoreHeader, bounds_min),
+                 bounds_max = offsetof(StoreHeader, bounds_max);
+    // An origin of 5.7e77 made every query's local position infinite, and every query an exhaustive search.
+    require_refused(forged(valid, origin, 5.7e77), "origin[0] is 5.7e+77");
+    require_refused(forged(valid, origin + 16, -std::nextafter(kMaxCoordinate, HUGE_VAL)), "origin[2]");
+    REQUIRE(try_load(forged(valid, origin + 8, kMaxCoordinate)) == Status::ok);  // the limit itself is the builder's
+    // Bounds are the positions' bounding box, exactly: wider, narrower or beyond the limit are refused.
+    StoreHeader h;
+    std::memcpy(&h, valid.data(), sizeof h);
+    require_refused(forged(valid, bounds_min, h.bounds_min[0] - 1.0f), "bounds along axis 0 are");
+    require_refused(forged(valid, bounds_max + 4, std::nextafter(h.bounds_max[1], 0.0f)), "the positions span");
+    require_refused(forged(valid, bounds_max + 8, 3e30f), "beyond the builder's limit of 2e30");
+    {
+        // Positions far beyond the limit, with bounds to match: refused by the bounds' limit.
+        std::vector<uint8_t> blob = valid;
+        const float far = 1e33f;
+        std::memcpy(blob.data() + section(blob, kSectionPositions).offset, &far, 4);
+        std::memcpy(blob.data() + bounds_max, &far, 4);
+        repair_checksum(blob);
+        require_refused(blob, "beyond the builder's limit");
+    }
+    {
+        // A normal is a unit vector or zero.
+        std::vector<uint8_t> blob = valid;
+        const float long_normal = 1.5f;
+        std::memcpy(blob.data() + section(blob, kSectionNormals).offset + 4, &long_normal, 4);
+        repair_checksum(blob);
+        require_refused(blob, "normals[1] is 1.5");
+    }
+}
+
+TEST_CASE("the builder's stores at its coordinate limits load: an origin at 1e30, a tilted plane moved onto its fit",
+          "[store_blob]") {
+    // The largest float within the builder's limit, at both ends of every axis: the origin is 0 and
+    // local coordinates reach the limit.
+    const float edge = std::nextafter(float(kMaxCoordinate), 0.0f);
+    families::ProbeSet box;
+    for (int c = 0; c < 8; ++c) box.add(c & 1 ? edge : -edge, c & 2 ? edge : -edge, c & 4 ? edge : -edge);
+    box.add(0.25 * edge, -0.5 * edge, 0.125 * edge);
+    CHECK(try_load(write_store_blob(built(box))) == Status::ok);
+    // All probes at the far end: the origin sits at the limit.
+    families::ProbeSet far = families::random_cloud(40, 43, 1e24, 0.0);
+    for (size_t i = 0; i < far.positions.size(); i += 3) far.positions[i] = edge - float(i) * 1e23f;
+    const StoreData at_limit = built(far);
+    CHECK(std::fabs(at_limit.origin[0]) > 0.99 * kMaxCoordinate);
+    CHECK(try_load(write_store_blob(at_limit)) == Status::ok);
+    // A thick tilted "plane" at the flat tolerance's largest value (0.1), spanning the limit, lower at
+    // its high end: its probes move onto the fitted plane, beyond the world box and beyond 1e30 from
+    // the origin, yet within the local limit of 2e30.
+    families::ProbeSet slab;
+    std::mt19937 rng(44);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int i = 0; i < 200; ++i) {
+        const double a = u(rng), b = u(rng), off = a > 0.8 ? -0.09 : 0.01 * u(rng);
+        slab.add(edge * a, edge * b, edge * std::fmax(-1.0, std::fmin(1.0, a + off)));
+    }
+    BuildSettings settings;
+    settings.flat_tolerance = 0.1;
+    const StoreData flat = build_store_data(slab.positions.data(), 12, nullptr, 108, slab.count(), settings);
+    CHECK(flat.dimension == 2);
+    double farthest = 0;
+    for (float x : flat.positions) farthest = std::fmax(farthest, std::fabs(double(x)));
+    CHECK(farthest > kMaxCoordinate);
+    CHECK(try_load(write_store_blob(flat)) == Status::ok);
+}
+
+TEST_CASE("a line or flat store whose axis does not match its positions is refused", "[store_blob]") {
+    const size_t axis = offsetof(StoreHeader, axis);
+    // A line along x (stored exactly on its fit): its cells have no length along y or z. Loaded with
+    // axis y it used to answer probe 0 everywhere.
+    families::ProbeSet along_x;
+    for (int i = 0; i < 12; ++i) along_x.add(2.0 + 0.5 * i, -1.0, 3.0);
+    const StoreData line = built(along_x);
+    REQUIRE(line.dimension == 1);
+    REQUIRE(line.axis == 0);
+    for (const uint32_t layout : {0u, kFlagCompact}) {
+        StoreData data = line;
+        data.flags |= layout;
+        const std::vector<uint8_t> valid = write_store_blob(data);
+        REQUIRE(try_load(valid) == Status::ok);
+        require_refused(forged(valid, axis, uint32_t(1)), "has zero length along axis 1");
+        require_refused(forged(valid, axis, uint32_t(2)), "has zero length along axis 2");
+    }
+    // A flat set in the plane z = 2 is triangulated in x and y (axis 2 dropped); dropping x instead
+    // projects every triangle onto a segment.
+    const StoreData flat = built(families::plane(40, 45));
+    REQUIRE(flat.dimension == 2);
+    REQUIRE(flat.axis == 2);
+    const std::vector<uint8_t> valid = write_store_blob(flat);
+    require_refused(forged(valid, axis, uint32_t(0)), "has zero area across axis 0");
+}
+
+TEST_CASE("a line whose probes share a coordinate along its axis builds without a zero-length cell", "[store_blob]") {
+    // Without merging, two probes that differ only across the line (or by less than a float's step
+    // along it) would have made a cell of zero length, which no point is in and the loader refuses.
+    families::ProbeSet set;
+    for (int i = 0; i < 10; ++i) set.add(i, 0, 0);
+    set.add(4, 1e-6, 0);                 // across the line only
+    set.add(1e-10, 0, 0);                // less than a float's step from probe 0 around the origin (4.5)
+    BuildSettings settings;
+    settings.merge_tolerance = 0;
+    const StoreData d = build_store_data(set.positions.data(), 12, nullptr, 108, set.count(), settings);
+    REQUIRE(d.dimension == 1);
+    std::unique_ptr<Store> store;
+    REQUIRE(try_load(write_store_blob(d), &store) == Status::ok);
+    for (uint32_t c = 0; c < d.inner_cell_count; ++c)
+        CHECK(d.positions[3 * d.cell_vertices[4 * c + 1] + d.axis] > d.positions[3 * d.cell_vertices[4 * c] + d.axis]);
+    // Every input probe is answered, by its survivor where it was merged.
+    for (size_t p = 0; p < set.count(); ++p) {
+        const Location loc = store->locate(&set.positions[3 * p], -1);
+        REQUIRE(loc.status == Status::ok);
+        float w = 0;
+        for (int k = 0; k < 4; ++k)
+            if (loc.probes[k] == store->input_to_stored(uint32_t(p))) w += loc.weights[k];
+        CHECK(w == Approx(1.0f).margin(1e-6));
+    }
 }
