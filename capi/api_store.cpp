@@ -4,6 +4,7 @@
 #include "core/file_io.h"
 #include "core/store.h"
 #include "grown_structs.h"
+#include "struct_defaults.h"
 #include "store_handle.h"
 
 #include <cmath>
@@ -124,12 +125,20 @@ TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_sto
     TP_API_END
 }
 
-TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store) {
+TP_API tp_status tp_store_load_file_ex(const char* path, const tp_store_load_options* options, tp_store** out_store) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(out_store);
     *out_store = nullptr;
     TP_REQUIRE_NOT_NULL(path);
-    const std::vector<uint8_t> bytes = read_file(path);
+    tp_store_load_options settings = default_store_load_options();
+    if (options) {
+        if (options->struct_size < sizeof(uint32_t))
+            return fail(TP_ERROR_INVALID_ARGUMENT, "options->struct_size is not set (use tp_store_load_options_init)");
+        // Fields beyond the caller's struct_size (an older caller's smaller struct) keep their defaults.
+        if (options->struct_size >= offsetof(tp_store_load_options, max_file_bytes) + sizeof(uint64_t))
+            settings.max_file_bytes = options->max_file_bytes;
+    }
+    const std::vector<uint8_t> bytes = read_file(path, settings.max_file_bytes);
     std::unique_ptr<tp_store> handle(new tp_store);
     try {
         handle->store = Store::load(bytes.data(), bytes.size());
@@ -139,6 +148,10 @@ TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store) {
     *out_store = handle.release();
     return TP_OK;
     TP_API_END
+}
+
+TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store) {
+    return tp_store_load_file_ex(path, nullptr, out_store);
 }
 
 TP_API tp_status tp_store_save_file(const tp_store* store, const char* path) {

@@ -148,10 +148,33 @@ TP_API tp_status tp_store_build(const float* positions, size_t position_stride, 
     store that loads examines a bounded number of cells (see tp_store_interpolate). */
 TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_store);
 
-/** Loads and validates a store file. */
+/** Options of tp_store_load_file_ex. */
+typedef struct tp_store_load_options {
+    uint32_t struct_size;
+    /** Files larger than this are refused with TP_ERROR_IO (default 1 GiB, far beyond any real store:
+        a store takes about 200 bytes per probe). */
+    uint64_t max_file_bytes;
+} tp_store_load_options;
+
+/** Fills defaults and struct_size. */
+TP_API tp_status tp_store_load_options_init(tp_store_load_options* options);
+
+/** Loads and validates a store file: tp_store_load_file_ex with the default options. */
 TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store);
 
-/** Writes the store's blob to path atomically (temporary file, then rename). */
+/** Loads and validates a store file. Only a regular file (symbolic links followed) of at most
+    options->max_file_bytes is read; a directory, device (such as /dev/zero), FIFO or socket, or a larger
+    file, is refused with TP_ERROR_IO and a message that says which. options may be NULL for defaults. */
+TP_API tp_status tp_store_load_file_ex(const char* path, const tp_store_load_options* options, tp_store** out_store);
+
+/** Writes the store's blob to path atomically: a temporary file next to the file is written, flushed
+    and renamed over it, so path holds either its old contents or the whole new store. A symbolic link
+    is written through (its target gets the new contents; the link stays). An existing file keeps its
+    permissions (POSIX mode; on Windows its attributes and access control), a new one gets the process's
+    default; a path naming a directory, device or FIFO is refused. The temporary file,
+    "<file name>.tetprobe-tmp-<process id>-<16 hex digits>", is removed on every failure; a save that
+    was killed leaves it behind, and the next save of the same file removes it (only files of that
+    pattern, whose process is gone and which no save holds). */
 TP_API tp_status tp_store_save_file(const tp_store* store, const char* path);
 
 /** Read-only view of the store's blob, valid while the store lives. */

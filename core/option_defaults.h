@@ -17,5 +17,8 @@ constexpr float kDefaultPlacementMargin = 0.1f;   // world units
 constexpr float kDefaultWalkMinHeight = 0.0f, kDefaultWalkMaxHeight = 2.0f;
 constexpr float kDefaultPlacementErrorBound = 0.05f;
 constexpr uint32_t kDefaultPlacementRays = 128;
+// Loading a store file (tp_store_load_options): larger files are refused. A store takes about 200
+// bytes per probe, cells included, so 1 GiB holds millions of probes, far beyond any level.
+constexpr uint64_t kDefaultMaxStoreFileBytes = uint64_t(1) << 30;
 
 }  // namespace tetprobe
