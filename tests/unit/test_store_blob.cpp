@@ -900,3 +900,77 @@ TEST_CASE("a line whose probes share a coordinate along its axis builds without 
         CHECK(w == Approx(1.0f).margin(1e-6));
     }
 }
+
+namespace {
+
+// Forged blobs (valid checksums) for the blob fuzzer's seeds: each a valid store with one thing the
+// builder never writes. Those the loader refuses, and those it loads whose queries the cap bounds.
+std::vector<std::pair<std::string, std::vector<uint8_t>>> forged_blobs() {
+    std::vector<std::pair<std::string, std::vector<uint8_t>>> blobs;
+    const std::vector<uint8_t> cloud = write_store_blob(built(families::random_cloud(300, 47)));
+    blobs.emplace_back("forged_origin_5.7e77", forged(cloud, offsetof(StoreHeader, origin), 5.7e77));
+    StoreHeader h;
+    std::memcpy(&h, cloud.data(), sizeof h);
+    blobs.emplace_back("forged_bounds_narrower", forged(cloud, offsetof(StoreHeader, bounds_max), h.bounds_max[0] * 0.5f));
+    families::ProbeSet along_x;
+    for (int i = 0; i < 40; ++i) along_x.add(0.5 * i, 1.0, -2.0);
+    blobs.emplace_back("forged_line_axis", forged(write_store_blob(built(along_x)), offsetof(StoreHeader, axis), uint32_t(1)));
+    blobs.emplace_back("forged_plane_axis",
+                       forged(write_store_blob(built(families::plane(60, 48))), offsetof(StoreHeader, axis), uint32_t(0)));
+    // Loadable, with queries that only the cap ends quickly: every tetrahedron flat (on the plane z = 0,
+    // where the fuzzer's queries are), every hull normal inwards, every start cell the same.
+    const StoreData big = built(families::random_cloud(1000, 49));
+    StoreData flat = big;
+    for (size_t p = 0; p < flat.probe_count(); ++p) flat.positions[3 * p + 2] = 0.0f;
+    flat.bounds_min[2] = flat.bounds_max[2] = 0.0f;
+    flat.origin[2] = 0.0;
+    blobs.emplace_back("forged_flat_tetrahedra", write_store_blob(flat));
+    StoreData inward = built(families::random_cloud(300, 47));
+    for (float& n : inward.normals) n = -n;
+    blobs.emplace_back("forged_inward_normals", write_store_blob(inward));
+    StoreData lying = built(families::random_cloud(300, 47));
+    for (uint32_t& cell : lying.grid_cells) cell = lying.inner_cell_count - 1;
+    blobs.emplace_back("forged_lying_start_grid", write_store_blob(lying));
+    return blobs;
+}
+
+}  // namespace
+
+TEST_CASE("write the blob fuzzer's forged seeds (run on purpose only)", "[.write-forged-seeds]") {
+    for (const auto& named : forged_blobs()) {
+        std::ofstream out(std::string(TP_SOURCE_DIR "/tests/fuzz/seeds/fuzz_load/") + named.first, std::ios::binary);
+        out.put(0);  // the fuzzer's mode byte: no checksum repair, no flag flipped
+        out.write(reinterpret_cast<const char*>(named.second.data()), std::streamsize(named.second.size()));
+        REQUIRE(out.good());
+    }
+}
+
+TEST_CASE("forged blobs are refused, or loaded with every query ending within its cap", "[store_blob]") {
+    for (const auto& named : forged_blobs()) {
+        INFO(named.first);
+        std::unique_ptr<Store> store;
+        const Status status = try_load(named.second, &store);
+        const bool loads = named.first == "forged_flat_tetrahedra" || named.first == "forged_inward_normals" ||
+                           named.first == "forged_lying_start_grid";
+        REQUIRE(status == (loads ? Status::ok : Status::invalid_blob));
+        if (!loads) continue;
+        const StoreHeader& h = store->header();
+        const uint64_t budget = 3 * uint64_t(h.cell_count - h.inner_cell_count) + 4096;
+        std::mt19937 rng(50);
+        std::uniform_real_distribution<double> u(-1.5, 1.5);
+        size_t gave_up = 0;
+        for (int i = 0; i < 60; ++i) {
+            float p[3];
+            for (int k = 0; k < 3; ++k) {
+                const double mid = 0.5 * (double(h.bounds_min[k]) + h.bounds_max[k]), half = 0.5 * (double(h.bounds_max[k]) - h.bounds_min[k]);
+                p[k] = float(h.origin[k] + mid + u(rng) * half);
+            }
+            const Location loc = store->locate(p, i % 2 ? -1 : int32_t(i * 37 % h.cell_count));
+            REQUIRE(loc.steps <= h.cell_count + 65);
+            REQUIRE(loc.searched <= budget);
+            REQUIRE((loc.status == Status::ok || loc.status == Status::invalid_blob));
+            gave_up += loc.status == Status::invalid_blob;
+        }
+        if (named.first == "forged_flat_tetrahedra") CHECK(gave_up > 0);
+    }
+}
