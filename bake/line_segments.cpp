@@ -12,6 +12,12 @@ SimplexMesh line_segments(const std::vector<double>& along) {
     std::vector<uint32_t> order(along.size());
     std::iota(order.begin(), order.end(), 0u);
     std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return along[a] < along[b]; });
+    // A point at the same coordinate as the one before it would make a segment of zero length (which
+    // holds no point and which the loader refuses): it is left out of every cell, as TetGen leaves out
+    // a coincident point, and the builder merges it into its nearest neighbour.
+    order.erase(std::unique(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return along[a] == along[b]; }),
+                order.end());
+    if (order.size() < 2) throw Error(Status::internal, "a line needs at least 2 distinct points");
 
     SimplexMesh mesh;
     mesh.dimension = 1;

@@ -42,7 +42,7 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
             options->progress, TP_OPTION_FIELD(options, progress_user) ? options->progress_user : nullptr);
     if (TP_OPTION_FIELD(options, occlusion_lights) && options->occlusion) {
         settings.occlusion = options->occlusion;
-        settings.occlusion_stride = tetprobe::resolve_stride(options->occlusion_stride, 4, "occlusion_stride");
+        settings.occlusion_stride = options->occlusion_stride;
         settings.occlusion_lights = options->occlusion_lights;
     }
     if (TP_OPTION_FIELD(options, scene) && options->scene) settings.scene = &options->scene->scene;
@@ -59,13 +59,14 @@ TP_API tp_status tp_store_build(const float* positions, size_t position_stride, 
     TP_REQUIRE_NOT_NULL(out_store);
     *out_store = nullptr;
     if (probe_count == 0) return tetprobe::fail(TP_ERROR_DEGENERATE, "no probes: a store needs at least one probe");
-    TP_REQUIRE_NOT_NULL(positions);
-    position_stride = tetprobe::resolve_stride(position_stride, kPositionBytes, "position_stride");
-    sh_stride = sh ? tetprobe::resolve_stride(sh_stride, kShBytes, "sh_stride") : kShBytes;
-    tetprobe::require_addressable(probe_count, position_stride, kPositionBytes, "positions");
-    if (sh) tetprobe::require_addressable(probe_count, sh_stride, kShBytes, "sh");
-    const tetprobe::BuildSettings settings = read_build_options(options);
-    if (settings.occlusion) tetprobe::require_addressable(probe_count, settings.occlusion_stride, 4, "occlusion");
+    using tetprobe::checked_buffer;
+    position_stride =
+        checked_buffer(positions, "positions", probe_count, "probe_count", position_stride, "position_stride", kPositionBytes);
+    sh_stride = sh ? checked_buffer(sh, "sh", probe_count, "probe_count", sh_stride, "sh_stride", kShBytes) : kShBytes;
+    tetprobe::BuildSettings settings = read_build_options(options);
+    if (settings.occlusion)
+        settings.occlusion_stride = checked_buffer(settings.occlusion, "options->occlusion", probe_count, "probe_count",
+                                                   settings.occlusion_stride, "options->occlusion_stride", 4);
 
     const tetprobe::StoreData data =
         tetprobe::build_store_data(positions, position_stride, sh, sh_stride, probe_count, settings);

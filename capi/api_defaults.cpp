@@ -29,6 +29,14 @@ TP_API tp_status tp_placement_options_init(tp_placement_options* options) {
     TP_API_END
 }
 
+TP_API tp_status tp_store_load_options_init(tp_store_load_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(options);
+    *options = tetprobe::default_store_load_options();
+    return TP_OK;
+    TP_API_END
+}
+
 TP_API tp_status tp_material_init(tp_material* material) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(material);

@@ -85,6 +85,12 @@ TP_API tp_status tp_scene_add_mesh(tp_scene* scene, const float* vertices, size_
     TP_REQUIRE_NOT_NULL(indices);
     TP_REQUIRE_NOT_NULL(materials);
     if (material_count == 0) return fail(TP_ERROR_INVALID_ARGUMENT, "material_count is 0");
+    tetprobe::checked_packed(vertices, "vertices", vertex_count, "vertex_count", 3 * sizeof(float));
+    tetprobe::checked_packed(indices, "indices", triangle_count, "triangle_count", 3 * sizeof(uint32_t));
+    tetprobe::checked_packed(materials, "materials", material_count, "material_count", sizeof(tp_material));
+    if (triangle_materials)
+        tetprobe::checked_packed(triangle_materials, "triangle_materials", triangle_count, "triangle_count",
+                                 sizeof(uint32_t));
     const std::string label = "mesh " + std::to_string(scene->scene.meshes().size());
     std::vector<tetprobe::Material> converted;
     for (size_t m = 0; m < material_count; ++m)
@@ -139,7 +145,7 @@ TP_API tp_status tp_scene_probes(const tp_scene* scene, const float** out_positi
 TP_API tp_status tp_scene_set_probes(tp_scene* scene, const float* positions, size_t count) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
-    if (count > 0) TP_REQUIRE_NOT_NULL(positions);
+    tetprobe::checked_packed(positions, "positions", count, "count", 3 * sizeof(float));
     scene->scene.set_probes(positions, count);
     return TP_OK;
     TP_API_END
@@ -155,6 +161,7 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     constexpr size_t kFirstPlanSize = offsetof(tp_effects_plan, inside_probes);
     if (plan->struct_size < kFirstPlanSize)
         return fail(TP_ERROR_INVALID_ARGUMENT, "plan->struct_size is not set to sizeof(tp_effects_plan)");
+    if (text) tetprobe::checked_packed(text, "text", text_capacity, "text_capacity", 1);
     if (text && text_capacity > 0) text[0] = '\0';
     tetprobe::BakeSettings settings;
     if (tp_status s = read_options(options, settings)) return s;
@@ -197,15 +204,15 @@ TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t p
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(out_sh);
-    sh_stride = tetprobe::resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
     tetprobe::BakeSettings settings;
     if (tp_status s = read_options(options, settings)) return s;
     std::vector<float> probes;
     if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
+    sh_stride = tetprobe::checked_buffer(out_sh, "out_sh", count, "count", sh_stride, "sh_stride", 27 * sizeof(float));
 
     const std::vector<float> sh = tetprobe::bake_lighting(scene->scene, probes, settings);
     for (size_t i = 0; i < count; ++i)
-        std::memcpy(reinterpret_cast<char*>(out_sh) + i * sh_stride, &sh[27 * i], 27 * sizeof(float));
+        std::memcpy(tetprobe::element_at(out_sh, i, sh_stride), &sh[27 * i], 27 * sizeof(float));
     return TP_OK;
     TP_API_END
 }
@@ -216,14 +223,15 @@ TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(out_occlusion);
-    occlusion_stride = tetprobe::resolve_stride(occlusion_stride, 4, "occlusion_stride");
     tetprobe::BakeSettings settings;
     if (tp_status s = read_options(options, settings)) return s;
     std::vector<float> probes;
     if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
+    occlusion_stride =
+        tetprobe::checked_buffer(out_occlusion, "out_occlusion", count, "count", occlusion_stride, "occlusion_stride", 4);
     uint32_t lights = 0;
     const std::vector<uint8_t> occlusion = tetprobe::bake_occlusion(scene->scene, probes, settings, &lights);
-    for (size_t i = 0; i < count; ++i) std::memcpy(out_occlusion + i * occlusion_stride, &occlusion[4 * i], 4);
+    for (size_t i = 0; i < count; ++i) std::memcpy(tetprobe::element_at(out_occlusion, i, occlusion_stride), &occlusion[4 * i], 4);
     if (out_mixed_lights) *out_mixed_lights = lights;
     return TP_OK;
     TP_API_END

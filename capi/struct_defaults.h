@@ -38,6 +38,13 @@ inline tp_placement_options default_placement_options() {
     return options;
 }
 
+inline tp_store_load_options default_store_load_options() {
+    tp_store_load_options options{};
+    options.struct_size = sizeof(tp_store_load_options);
+    options.max_file_bytes = kDefaultMaxStoreFileBytes;
+    return options;
+}
+
 // Grey, one-sided, not emissive.
 inline tp_material default_material() {
     tp_material material{};

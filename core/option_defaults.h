@@ -26,4 +26,8 @@ constexpr float kDefaultLightDirection[3] = {0.0f, -1.0f, 0.0f};
 constexpr float kDefaultLightRange = std::numeric_limits<float>::infinity();
 constexpr float kDefaultSpotInnerAngle = 30.0f, kDefaultSpotOuterAngle = 45.0f;  // full cone angles, degrees
 
+// Loading a store file (tp_store_load_options): larger files are refused. A store takes about 200
+// bytes per probe, cells included, so 1 GiB holds millions of probes, far beyond any level.
+constexpr uint64_t kDefaultMaxStoreFileBytes = uint64_t(1) << 30;
+
 }  // namespace tetprobe

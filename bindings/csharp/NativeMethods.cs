@@ -54,6 +54,14 @@ namespace TetProbe
         public uint leak_edges;        // probe pairs kept for leak control
     }
 
+    /// <summary>tp_store_load_options: the largest file tp_store_load_file_ex reads.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpStoreLoadOptions
+    {
+        public uint struct_size;
+        public ulong max_file_bytes;
+    }
+
     /// <summary>tp_batch_options: flags (TP_BATCH_*) and the threads a batch query may use (0 or 1 = the caller's).</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpBatchOptions
@@ -187,7 +195,14 @@ namespace TetProbe
         public static extern int tp_store_load([In] byte[] data, UIntPtr size, out StoreHandle store);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_load_options_init(ref TpStoreLoadOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_load_file([In] byte[] path, out StoreHandle store);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_load_file_ex([In] byte[] path, ref TpStoreLoadOptions options,
+            out StoreHandle store);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_save_file(StoreHandle store, [In] byte[] path);

@@ -152,6 +152,17 @@ namespace TetProbe
             return store;
         }
 
+        public static StoreHandle LoadFile(string path, ulong maxFileBytes)
+        {
+            EnsureVersion();
+            var options = new TpStoreLoadOptions();
+            Check(NativeMethods.tp_store_load_options_init(ref options));
+            options.max_file_bytes = maxFileBytes;
+            StoreHandle store;
+            Check(NativeMethods.tp_store_load_file_ex(Utf8Path(path), ref options, out store));
+            return store;
+        }
+
         public static void SaveFile(StoreHandle store, string path)
         {
             EnsureVersion();

@@ -123,10 +123,17 @@ namespace TetProbe
                 occlusion == null ? 0 : occlusion.MixedLights, progress, cancel));
         }
 
-        /// <summary>Loads and validates a store file.</summary>
+        /// <summary>Loads and validates a store file (a regular file of at most 1 GiB).</summary>
         public static ProbeStore Load(string path)
         {
             return new ProbeStore(NativeProxy.LoadFile(path));
+        }
+
+        /// <summary>Loads and validates a store file; a file larger than maxFileBytes, or one that is not a regular
+        /// file, throws TetProbeException with status IO.</summary>
+        public static ProbeStore Load(string path, ulong maxFileBytes)
+        {
+            return new ProbeStore(NativeProxy.LoadFile(path, maxFileBytes));
         }
 
         /// <summary>Loads and validates a store blob (copied; safe for untrusted bytes).</summary>
@@ -136,7 +143,8 @@ namespace TetProbe
             return new ProbeStore(NativeProxy.Load(data));
         }
 
-        /// <summary>Writes the store to path atomically.</summary>
+        /// <summary>Writes the store to path atomically (a temporary file next to it, then a rename; a symbolic link is
+        /// written through and an existing file keeps its permissions).</summary>
         public void Save(string path)
         {
             NativeProxy.SaveFile(Live(), path);

@@ -170,6 +170,8 @@ int main(int argc, char** argv) {
     test_placement_options_and_errors();
     test_placement_whole_and_walkable();
     test_inside_probes();
+    test_buffer_sizes_and_strides();
+    test_store_files();
 #endif
     printf("%d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;

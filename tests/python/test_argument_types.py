@@ -40,7 +40,7 @@ CALLS = {
     "Store.build": (lambda: Store.build, lambda: dict(positions=POINTS, sh=None, compact=False, extrapolate=True,
                                                       index32=False, merge_tolerance=1e-6, flat_tolerance=1e-4,
                                                       progress=None, scene=None, occlusion=None, occlusion_lights=None)),
-    "Store.load": (lambda: Store.load, lambda: dict(source=store().to_bytes())),
+    "Store.load": (lambda: Store.load, lambda: dict(source=store().to_bytes(), max_file_bytes=1 << 30)),
     "Store.save": (lambda: store().save, lambda: dict(path="replaced by the test: a file in tmp_path")),
     "Store.probe_sh": (lambda: store().probe_sh, lambda: dict(probe=0)),
     "Store.interpolate": (lambda: store().interpolate, lambda: dict(points=POINTS, hints=None, threads=1,

@@ -52,6 +52,10 @@ class BuildOptions(Structure):
                 ("scene", c_void_p)]
 
 
+class StoreLoadOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("max_file_bytes", c_uint64)]
+
+
 class StoreInfo(Structure):
     _fields_ = [("struct_size", c_uint32), ("format_version", c_uint32), ("dimension", c_uint32),
                 ("probes", c_uint32), ("input_probes", c_uint32), ("merged_probes", c_uint32),
@@ -132,7 +136,9 @@ PROTOTYPES = (
     ("tp_store_build", _status, (_buffer, c_size_t, _buffer, c_size_t, c_size_t, POINTER(BuildOptions),
                                  POINTER(_handle))),
     ("tp_store_load", _status, (_buffer, c_size_t, POINTER(_handle))),
+    ("tp_store_load_options_init", _status, (POINTER(StoreLoadOptions),)),
     ("tp_store_load_file", _status, (c_char_p, POINTER(_handle))),
+    ("tp_store_load_file_ex", _status, (c_char_p, POINTER(StoreLoadOptions), POINTER(_handle))),
     ("tp_store_save_file", _status, (_handle, c_char_p)),
     ("tp_store_blob", _status, (_handle, POINTER(c_void_p), POINTER(c_size_t))),
     ("tp_store_release", _status, (_handle,)),

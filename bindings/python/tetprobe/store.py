@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _native
 from ._handle import NativeHandle
-from ._arrays import UINT32_MAX, Progress, as_array, flag, integer, number, rows
+from ._arrays import UINT32_MAX, UINT64_MAX, Progress, as_array, flag, integer, number, rows
 from ._arrays import path as _path_argument
 from ._native import SH_FLOATS, check, lib
 from .scene import scene_argument
@@ -89,16 +89,26 @@ class Store(NativeHandle):
         return cls(handle.value)
 
     @classmethod
-    def load(cls, source):
+    def load(cls, source, max_file_bytes=None):
         """Loads and validates a store from source: a file path (str or os.PathLike) or the blob itself
         (bytes, bytearray or memoryview, copied). Safe for untrusted input: a bad blob raises
-        Error(INVALID_BLOB) or Error(VERSION), a missing file Error(IO)."""
+        Error(INVALID_BLOB) or Error(VERSION); a missing file, one that is not a regular file (a
+        directory, a device, a FIFO) or one larger than max_file_bytes (default 1 GiB) Error(IO)."""
+        if max_file_bytes is not None:
+            max_file_bytes = integer(max_file_bytes, "max_file_bytes", 1, UINT64_MAX)
         handle = ctypes.c_void_p()
         if isinstance(source, (bytes, bytearray, memoryview)):
             data = np.frombuffer(source, dtype=np.uint8)
             check(lib.tp_store_load(data if data.size else np.zeros(1, np.uint8), data.size, ctypes.byref(handle)))
         elif isinstance(source, (str, os.PathLike)):
-            check(lib.tp_store_load_file(_path_argument(source, "source"), ctypes.byref(handle)))
+            path = _path_argument(source, "source")
+            if max_file_bytes is None:
+                check(lib.tp_store_load_file(path, ctypes.byref(handle)))
+            else:
+                options = _native.StoreLoadOptions()
+                check(lib.tp_store_load_options_init(ctypes.byref(options)))
+                options.max_file_bytes = max_file_bytes
+                check(lib.tp_store_load_file_ex(path, ctypes.byref(options), ctypes.byref(handle)))
         else:
             raise TypeError("source must be a path (str or os.PathLike) or the blob (bytes, bytearray or memoryview) "
                             "(got %s)" % type(source).__name__)
@@ -107,7 +117,9 @@ class Store(NativeHandle):
     # ---- blob
 
     def save(self, path):
-        """Writes the blob to path (str or os.PathLike) atomically: a temporary file, then a rename."""
+        """Writes the blob to path (str or os.PathLike) atomically: a temporary file next to it, then a
+        rename. A symbolic link is written through, an existing file keeps its permissions, and the
+        temporary file never outlives a failed save (see tp_store_save_file)."""
         check(lib.tp_store_save_file(self._live(), _path_argument(path, "path")))
 
     def to_bytes(self):
