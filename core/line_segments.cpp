@@ -1,21 +1,26 @@
-#include "bake/line_segments.h"
+#include "core/line_segments.h"
 
 #include "core/error.h"
 
 #include <algorithm>
 #include <numeric>
+#include <vector>
 
 namespace tetprobe {
 
-SimplexMesh line_segments(const std::vector<double>& along) {
-    if (along.size() < 2) throw Error(Status::internal, "a line needs at least 2 points");
-    std::vector<uint32_t> order(along.size());
+SimplexMesh line_segments(const float* positions, uint32_t count, uint32_t axis) {
+    if (count < 2) throw Error(Status::degenerate, "a line needs at least 2 probes");
+    std::vector<uint32_t> order(count);
     std::iota(order.begin(), order.end(), 0u);
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return along[a] < along[b]; });
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return positions[size_t(a) * 3 + axis] < positions[size_t(b) * 3 + axis];
+    });
 
     SimplexMesh mesh;
     mesh.dimension = 1;
-    const uint32_t segments = uint32_t(order.size() - 1);
+    const uint32_t segments = count - 1;
+    mesh.vertices.reserve(segments);
+    mesh.neighbours.reserve(segments);
     for (uint32_t s = 0; s < segments; ++s) {
         CellSlots vertices = kNoSlots, neighbours = kNoSlots;
         vertices[0] = order[s];

@@ -15,9 +15,9 @@ constexpr uint32_t kMaxStartGridCells = 1u << 22;
 void start_grid_dimensions(const float lo[3], const float hi[3], uint32_t inner_cells, uint32_t out[3]);
 
 // Fills data.grid and data.grid_cells: each entry is the inner cell containing the grid cell's centre
-// (found by a walk with exact orientation predicates over the finished inner cells from the previous
-// entry's cell),
-// or, for a centre outside the hull, the last inner cell that walk reached on the hull.
+// rounded to float (found by a walk with the run time's exact orientation predicates over the
+// finished inner cells, from the previous entry's cell), or, for a centre outside the hull, the last
+// inner cell that walk reached on the hull.
 void build_start_grid(StoreData& data);
 
 }  // namespace tetprobe

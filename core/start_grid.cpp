@@ -1,6 +1,6 @@
-#include "bake/start_grid.h"
+#include "core/start_grid.h"
 
-#include "bake/exact_orientation.h"
+#include "core/orientation.h"
 #include "core/store_format.h"
 
 #include <algorithm>
@@ -14,42 +14,36 @@ namespace {
 // strictly on its far side, decided by the exact orientation predicates the run time uses; stops in a
 // cell that holds p, at the hull, or after a step cap (with exact signs a visibility walk on a Delaunay
 // tessellation terminates; the cap only guards flat cells, and any inner cell is a valid start).
-uint32_t walk_inner_cells(const StoreData& data, const double p[3], uint32_t cell) {
+uint32_t walk_inner_cells(const StoreData& data, const float p[3], uint32_t cell) {
     const uint32_t d = data.dimension, inner = data.inner_cell_count;
     if (d == 0) return 0;
     const uint32_t u = data.axis == 0 ? 1 : 0, v = data.axis == 2 ? 1 : 2;  // 2D plane coordinates
-    auto position = [&](uint32_t probe, double out[3]) {
-        const float* x = &data.positions[size_t(probe) * 3];
-        out[0] = x[0];
-        out[1] = x[1];
-        out[2] = x[2];
-    };
-    const double q2[2] = {p[u], p[v]};
+    const float q2[2] = {p[u], p[v]};
     for (uint32_t step = 0; step < 4096; ++step) {
         const uint32_t* slots = &data.cell_vertices[size_t(cell) * 4];
-        double x[4][3];
-        for (uint32_t k = 0; k <= d; ++k) position(slots[k], x[k]);
+        const float* x[4];
+        for (uint32_t k = 0; k <= d; ++k) x[k] = &data.positions[size_t(slots[k]) * 3];
         uint32_t beyond = 4;  // a slot whose facet has p on its far side
         if (d == 1) {
             const uint32_t a = data.axis;
             if (p[a] < x[0][a]) beyond = 1;
             else if (p[a] > x[1][a]) beyond = 0;
         } else if (d == 2) {
-            double y[3][2];
+            float y[3][2];
             for (uint32_t k = 0; k < 3; ++k) {
                 y[k][0] = x[k][u];
                 y[k][1] = x[k][v];
             }
             for (uint32_t k = 0; k < 3 && beyond == 4; ++k) {
-                const double* z[3] = {y[0], y[1], y[2]};
+                const float* z[3] = {y[0], y[1], y[2]};
                 z[k] = q2;
-                if (orient2d_sign(z[0], z[1], z[2]) < 0) beyond = k;
+                if (orient2d(z[0], z[1], z[2]) < 0) beyond = k;
             }
         } else {
             for (uint32_t k = 0; k < 4 && beyond == 4; ++k) {
-                const double* z[4] = {x[0], x[1], x[2], x[3]};
+                const float* z[4] = {x[0], x[1], x[2], x[3]};
                 z[k] = p;
-                if (orient3d_sign(z[0], z[1], z[2], z[3]) < 0) beyond = k;
+                if (orient3d(z[0], z[1], z[2], z[3]) < 0) beyond = k;
             }
         }
         if (beyond == 4) return cell;
@@ -108,8 +102,9 @@ void build_start_grid(StoreData& data) {
             const bool backwards = ((y + z * gy) & 1u) != 0;
             for (uint32_t i = 0; i < gx; ++i) {
                 const uint32_t x = backwards ? gx - 1 - i : i;
-                const double p[3] = {data.bounds_min[0] + (x + 0.5) * step[0], data.bounds_min[1] + (y + 0.5) * step[1],
-                                     data.bounds_min[2] + (z + 0.5) * step[2]};
+                // The centre rounded to float, as a query would give it.
+                const float p[3] = {float(data.bounds_min[0] + (x + 0.5) * step[0]), float(data.bounds_min[1] + (y + 0.5) * step[1]),
+                                    float(data.bounds_min[2] + (z + 0.5) * step[2])};
                 cell = walk_inner_cells(data, p, cell);
                 data.grid_cells[(size_t(z) * gy + y) * gx + x] = cell;
             }

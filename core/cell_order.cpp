@@ -1,8 +1,9 @@
-#include "bake/cell_order.h"
+#include "core/cell_order.h"
 
 #include "core/store_format.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <numeric>
 #include <tuple>
 #include <utility>
@@ -35,6 +36,23 @@ void radix_sort_by_key(std::vector<uint32_t>& keys, std::vector<uint32_t>& items
         }
         keys.swap(key_buffer);
         items.swap(item_buffer);
+    }
+}
+
+// Within each run of equal keys (after a stable sort), orders the cells by their vertex slots.
+void order_equal_keys_by_vertices(const std::vector<uint32_t>& keys, std::vector<uint32_t>& items,
+                                  const std::vector<uint32_t>& cell_vertices) {
+    auto slots = [&](uint32_t c) {
+        const uint32_t* v = &cell_vertices[size_t(c) * 4];
+        return std::tie(v[0], v[1], v[2], v[3]);
+    };
+    for (size_t i = 0; i < keys.size();) {
+        size_t j = i + 1;
+        while (j < keys.size() && keys[j] == keys[i]) ++j;
+        if (j - i > 1)
+            std::sort(items.begin() + ptrdiff_t(i), items.begin() + ptrdiff_t(j),
+                      [&](uint32_t a, uint32_t b) { return slots(a) < slots(b); });
+        i = j;
     }
 }
 
@@ -71,10 +89,9 @@ void order_cells_for_locality(StoreData& data) {
     const double centre[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
 
     // Keys: the top 32 bits of each centroid's Morton code (about 1/2000 of the bounds per axis, finer
-    // than any walk cares about); equal keys keep the triangulation's order.
+    // than any walk cares about).
     std::vector<uint32_t> keys(cells), old_of_new(cells);
-    uint32_t nearest = 0;
-    double nearest_distance = -1;
+    std::vector<double> distance(inner);
     for (uint32_t c = 0; c < cells; ++c) {
         const uint32_t* v = &data.cell_vertices[size_t(c) * 4];
         double centroid[3] = {0, 0, 0};
@@ -91,13 +108,9 @@ void order_cells_for_locality(StoreData& data) {
         keys[c] = uint32_t(morton_code(centroid, lo, hi) >> 31);
         old_of_new[c] = c;
         if (c < inner) {
-            const double d2 = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
-                              (centroid[1] - centre[1]) * (centroid[1] - centre[1]) +
-                              (centroid[2] - centre[2]) * (centroid[2] - centre[2]);
-            if (nearest_distance < 0 || d2 < nearest_distance) {
-                nearest_distance = d2;
-                nearest = c;
-            }
+            distance[c] = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
+                          (centroid[1] - centre[1]) * (centroid[1] - centre[1]) +
+                          (centroid[2] - centre[2]) * (centroid[2] - centre[2]);
         }
     }
     std::vector<uint32_t> inner_keys(keys.begin(), keys.begin() + inner), outer_keys(keys.begin() + inner, keys.end());
@@ -105,9 +118,15 @@ void order_cells_for_locality(StoreData& data) {
     std::vector<uint32_t> outer_order(old_of_new.begin() + inner, old_of_new.end());
     radix_sort_by_key(inner_keys, inner_order);
     radix_sort_by_key(outer_keys, outer_order);
+    order_equal_keys_by_vertices(inner_keys, inner_order, data.cell_vertices);
+    order_equal_keys_by_vertices(outer_keys, outer_order, data.cell_vertices);
     std::copy(inner_order.begin(), inner_order.end(), old_of_new.begin());
     std::copy(outer_order.begin(), outer_order.end(), old_of_new.begin() + inner);
-    if (inner > 0) std::swap(old_of_new[0], *std::find(old_of_new.begin(), old_of_new.begin() + inner, nearest));
+    // The inner cell nearest the centre (the first in this order among equally near ones) to slot 0.
+    uint32_t nearest = 0;
+    for (uint32_t n = 1; n < inner; ++n)
+        if (distance[old_of_new[n]] < distance[old_of_new[nearest]]) nearest = n;
+    if (inner > 0) std::swap(old_of_new[0], old_of_new[nearest]);
 
     std::vector<uint32_t> new_of_old(cells);
     for (uint32_t n = 0; n < cells; ++n) new_of_old[old_of_new[n]] = n;
