@@ -21,15 +21,25 @@ int cell_orientation(const CellSlots& v, uint32_t dimension, uint32_t axis, cons
 }
 
 void canonicalise_cell(CellSlots& vertices, CellSlots& neighbours, uint32_t dimension, int orientation) {
-    // Insertion sort of slots 0..d, tracking the permutation's parity.
-    int parity = 1;
-    for (uint32_t i = 1; i <= dimension; ++i)
-        for (uint32_t j = i; j > 0 && vertices[j - 1] > vertices[j]; --j) {
-            std::swap(vertices[j - 1], vertices[j]);
-            std::swap(neighbours[j - 1], neighbours[j]);
-            parity = -parity;
-        }
-    if (dimension >= 1 && orientation * parity < 0) {
+    // A sorting network over slots 0..d (conditional moves, no data-dependent branch: a Delaunay
+    // rebuild sorts every cell), tracking the permutation's parity.
+    uint32_t odd = 0;
+    auto order = [&](size_t i, size_t j) {
+        const uint32_t a = vertices[i], b = vertices[j], m = neighbours[i], n = neighbours[j];
+        const uint32_t swap = uint32_t(a > b), mask = 0u - swap;
+        vertices[i] = a ^ ((a ^ b) & mask);
+        vertices[j] = b ^ ((a ^ b) & mask);
+        neighbours[i] = m ^ ((m ^ n) & mask);
+        neighbours[j] = n ^ ((m ^ n) & mask);
+        odd ^= swap;
+    };
+    switch (dimension) {
+        case 3: order(0, 1), order(2, 3), order(0, 2), order(1, 3), order(1, 2); break;
+        case 2: order(0, 1), order(1, 2), order(0, 1); break;
+        case 1: order(0, 1); break;
+        default: return;
+    }
+    if (orientation * (odd ? -1 : 1) < 0) {
         std::swap(vertices[0], vertices[1]);
         std::swap(neighbours[0], neighbours[1]);
     }

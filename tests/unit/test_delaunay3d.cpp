@@ -210,3 +210,15 @@ TEST_CASE("delaunay3d: duplicates, sets without volume and too few points are re
     const std::vector<uint32_t> bad_order = {0, 1, 1};
     REQUIRE_THROWS_AS(tetprobe::delaunay_cells_3d(three.xyz.data(), three.count(), bad_order), tetprobe::Error);
 }
+
+TEST_CASE("delaunay3d: the portable and the AVX2 kernels build the same cells", "[delaunay3d]") {
+    // TP_NO_AVX2 selects the portable kernels at each call (as it does for the walk at load).
+    for (const PointSet& s : {random_set(500, 50), lattice(5), sphere(9), box_sides(200, 51)}) {
+        INFO(s.name);
+        const auto chosen = referee::sorted_cells(tetprobe::delaunay_cells_3d(s.xyz.data(), s.count()));
+        setenv("TP_NO_AVX2", "1", 1);
+        const auto portable = referee::sorted_cells(tetprobe::delaunay_cells_3d(s.xyz.data(), s.count()));
+        unsetenv("TP_NO_AVX2");
+        REQUIRE(portable == chosen);
+    }
+}

@@ -7,6 +7,7 @@
 #include "bake/tetgen_guard.h"
 #include "core/exact_integer.h"
 #include "core/insphere.h"
+#include "core/insphere_kernels.h"
 #include "core/orientation.h"
 
 #include <tetgen.h>
@@ -261,4 +262,29 @@ TEST_CASE("the 2D tie rule is TetGen's 3D rule under an apex of the highest inde
         ++checked;
     }
     REQUIRE(checked > 500);
+}
+
+TEST_CASE("the AVX2 in-sphere filter decides exactly as the scalar one, bit for bit", "[insphere]") {
+#ifdef TETPROBE_X86_64
+    if (!cpu_has_avx2()) return;
+    std::mt19937 rng(41);
+    std::uniform_real_distribution<double> u(-4, 4);
+    std::vector<P3> sphere;
+    for (int x = -5; x <= 5; ++x)
+        for (int y = -5; y <= 5; ++y)
+            for (int z = -5; z <= 5; ++z)
+                if (x * x + y * y + z * z == 25) sphere.push_back({float(x), float(y), float(z)});
+    for (int trial = 0; trial < 20000; ++trial) {
+        float padded[5][4] = {};
+        for (int i = 0; i < 5; ++i) {
+            const P3 p = trial % 2 ? sphere[rng() % sphere.size()] : P3{float(u(rng)), float(u(rng)), float(u(rng))};
+            for (int k = 0; k < 3; ++k) padded[i][k] = std::ldexp(p[size_t(k)], trial % 7 - 3);
+        }
+        const float* const P[5] = {padded[0], padded[1], padded[2], padded[3], padded[4]};
+        int scalar = 7, avx2 = 7;
+        const bool scalar_decided = ScalarInsphere::filter(P, &scalar), avx2_decided = Avx2Insphere::filter(P, &avx2);
+        REQUIRE(scalar_decided == avx2_decided);
+        REQUIRE(scalar == avx2);
+    }
+#endif
 }
