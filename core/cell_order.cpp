@@ -22,15 +22,16 @@ uint64_t spread_bits(uint64_t x) {
     return x;
 }
 
-// Stable LSD radix sort of indices by a 32-bit key (four 8-bit passes, no comparisons).
+// Stable LSD radix sort of indices by a 32-bit key (three 11-bit passes, no comparisons).
 void radix_sort_by_key(std::vector<uint32_t>& keys, std::vector<uint32_t>& items) {
     std::vector<uint32_t> key_buffer(keys.size()), item_buffer(items.size());
-    for (int shift = 0; shift < 32; shift += 8) {
-        size_t counts[257] = {};
-        for (uint32_t k : keys) ++counts[((k >> shift) & 0xFFu) + 1];
-        for (int b = 0; b < 256; ++b) counts[b + 1] += counts[b];
+    std::vector<uint32_t> counts(2049);
+    for (int shift = 0; shift < 32; shift += 11) {
+        std::fill(counts.begin(), counts.end(), 0u);
+        for (uint32_t k : keys) ++counts[((k >> shift) & 0x7FFu) + 1];
+        for (int b = 0; b < 2048; ++b) counts[size_t(b) + 1] += counts[size_t(b)];
         for (size_t i = 0; i < keys.size(); ++i) {
-            const size_t to = counts[(keys[i] >> shift) & 0xFFu]++;
+            const uint32_t to = counts[(keys[i] >> shift) & 0x7FFu]++;
             key_buffer[to] = keys[i];
             item_buffer[to] = items[i];
         }
@@ -84,28 +85,43 @@ std::vector<uint32_t> curve_order(const std::vector<Eigen::Vector3d>& points, co
 
 void order_cells_for_locality(StoreData& data) {
     const uint32_t cells = data.cell_count(), inner = data.inner_cell_count;
-    const double lo[3] = {data.bounds_min[0], data.bounds_min[1], data.bounds_min[2]};
-    const double hi[3] = {data.bounds_max[0], data.bounds_max[1], data.bounds_max[2]};
-    const double centre[3] = {0.5 * (lo[0] + hi[0]), 0.5 * (lo[1] + hi[1]), 0.5 * (lo[2] + hi[2])};
+    double lo[3], scale[3], centre[3];
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = data.bounds_min[a];
+        const double extent = double(data.bounds_max[a]) - lo[a];
+        scale[a] = extent > 0 ? double(0x1FFFFF) / extent : 0.0;  // a flat axis quantises to 0
+        centre[a] = 0.5 * (lo[a] + double(data.bounds_max[a]));
+    }
 
-    // Keys: the top 32 bits of each centroid's Morton code (about 1/2000 of the bounds per axis, finer
-    // than any walk cares about).
+    // Keys: the top 32 bits of the Morton code of each cell's centroid quantised to 21 bits per axis
+    // (about 1/2000 of the bounds per axis, finer than any walk cares about). Plain IEEE arithmetic
+    // (no library functions), so a loader on another platform computes the same keys.
+    const float* positions = data.positions.data();
+    const uint32_t* slots = data.cell_vertices.data();
     std::vector<uint32_t> keys(cells), old_of_new(cells);
     std::vector<double> distance(inner);
+    const uint32_t corners_inner = data.dimension + 1, corners_outer = data.dimension;
+    const double inverse_inner = 1.0 / corners_inner, inverse_outer = corners_outer ? 1.0 / corners_outer : 0.0;
     for (uint32_t c = 0; c < cells; ++c) {
-        const uint32_t* v = &data.cell_vertices[size_t(c) * 4];
-        double centroid[3] = {0, 0, 0};
-        int count = 0;
-        for (int k = 0; k < 4; ++k) {
-            if (v[k] >= kOuter32) continue;
-            const float* p = &data.positions[size_t(v[k]) * 3];
-            centroid[0] += p[0];
-            centroid[1] += p[1];
-            centroid[2] += p[2];
-            ++count;
+        const uint32_t* v = slots + size_t(c) * 4;
+        const uint32_t corners = c < inner ? corners_inner : corners_outer;
+        const double inverse = c < inner ? inverse_inner : inverse_outer;
+        double sum[3] = {0, 0, 0};
+        for (uint32_t k = 0; k < corners; ++k) {
+            const float* p = positions + size_t(v[k]) * 3;
+            sum[0] += p[0];
+            sum[1] += p[1];
+            sum[2] += p[2];
         }
-        for (double& x : centroid) x /= count;
-        keys[c] = uint32_t(morton_code(centroid, lo, hi) >> 31);
+        uint64_t code = 0;
+        double centroid[3];
+        for (int a = 0; a < 3; ++a) {
+            centroid[a] = sum[a] * inverse;
+            double f = (centroid[a] - lo[a]) * scale[a];
+            f = f < 0 ? 0 : f > double(0x1FFFFF) ? double(0x1FFFFF) : f;
+            code |= spread_bits(uint64_t(f)) << a;
+        }
+        keys[c] = uint32_t(code >> 31);
         old_of_new[c] = c;
         if (c < inner) {
             distance[c] = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
@@ -118,6 +134,8 @@ void order_cells_for_locality(StoreData& data) {
     std::vector<uint32_t> outer_order(old_of_new.begin() + inner, old_of_new.end());
     radix_sort_by_key(inner_keys, inner_order);
     radix_sort_by_key(outer_keys, outer_order);
+    // Cells with equal keys (and equally near the centre below) go by their vertex slots, so the order
+    // depends only on which cells there are.
     order_equal_keys_by_vertices(inner_keys, inner_order, data.cell_vertices);
     order_equal_keys_by_vertices(outer_keys, outer_order, data.cell_vertices);
     std::copy(inner_order.begin(), inner_order.end(), old_of_new.begin());

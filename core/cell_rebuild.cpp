@@ -47,7 +47,8 @@ void store_cells(SimplexMesh mesh, StoreData& data) {
 }
 
 RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
-                           bool extrapolate, const float bounds_min[3], const float bounds_max[3]) {
+                           bool extrapolate, const float bounds_min[3], const float bounds_max[3],
+                           const uint32_t grid[3]) {
     StoreData data;
     data.flags = extrapolate ? 0u : kFlagNoExtrapolation;
     data.dimension = dimension;
@@ -56,10 +57,11 @@ RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_
     for (int a = 0; a < 3; ++a) {
         data.bounds_min[a] = bounds_min[a];
         data.bounds_max[a] = bounds_max[a];
+        data.grid[a] = grid[a];
     }
     store_cells(inner_cells(positions, probe_count, dimension, axis), data);
     order_cells_for_locality(data);
-    build_start_grid(data);
+    fill_start_grid(data);
     RebuiltCells out;
     out.inner_cell_count = data.inner_cell_count;
     out.cell_vertices = std::move(data.cell_vertices);

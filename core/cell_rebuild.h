@@ -36,11 +36,13 @@ struct RebuiltCells {
 };
 
 // Steps 1 to 4 for a loaded store: positions (3 floats per probe, local), the header's dimension,
-// axis and bounds, and whether it extrapolates (no kFlagNoExtrapolation). Gives exactly the cells,
-// neighbours and start grid the builder stored for these probes in the layouts that keep them
-// (tests/unit/test_cell_rebuild.cpp proves it on every hard-case family). Allocates; throws Error as
-// inner_cells does, which a loader reports as an invalid blob.
+// axis, bounds and start grid dimensions, and whether it extrapolates (no kFlagNoExtrapolation).
+// Gives exactly the cells, neighbours and start grid the builder stored for these probes in the
+// layouts that keep them (tests/unit/test_cell_rebuild.cpp proves it on every hard-case family), on
+// any platform: every step is exact predicates, integers and plain IEEE arithmetic. Allocates; throws
+// Error as inner_cells and fill_start_grid do, which a loader reports as an invalid blob.
 RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
-                           bool extrapolate, const float bounds_min[3], const float bounds_max[3]);
+                           bool extrapolate, const float bounds_min[3], const float bounds_max[3],
+                           const uint32_t grid[3]);
 
 }  // namespace tetprobe

@@ -24,6 +24,11 @@ private:
     struct Boundary {
         uint32_t cell, facet, outside;  // cavity cell, its facet on the boundary, the link across it
     };
+    struct Filed {
+        uint32_t facet, reverse;  // a new facet and where its reverse half-edge is filed
+    };
+    // The direct table: for cavities of at most kDirectVertices boundary vertices (p numbered too).
+    static constexpr uint32_t kDirectVertices = 255, kStride = 256;
 
     const float* point(uint32_t v) const { return positions_ + size_t(v) * 3; }
     const float* padded(uint32_t v) const { return padded_.data() + size_t(v) * 4; }
@@ -61,6 +66,9 @@ private:
         tets_.reserve(size_t(count_) * 7 + 16);
         mark_.reserve(tets_.capacity());
         initial_.assign(count_, 0);
+        local_.assign(size_t(count_) + 1, 0);
+        local_stamp_.assign(size_t(count_) + 1, 0);
+        pairs_.assign(size_t(kStride) * kStride, 0);
         const uint32_t a = order[0], b = order[1];
         uint32_t c = kInfinite, d = kInfinite;
         if (same_point(a, b)) duplicate(a, b);
@@ -171,23 +179,35 @@ private:
     bool classify(uint32_t t, uint32_t p) {
         const Tet& cell = tets_[t];
         bool conflict;
-        if (cell.v[3] != kInfinite) {
+        if (__builtin_expect(cell.v[3] != kInfinite, 1)) {
             const float* const P[5] = {padded(cell.v[0]), padded(cell.v[1]), padded(cell.v[2]), padded(cell.v[3]), padded(p)};
             int sign;
-            if (!TP_SPHERE_KERNEL::filter(P, &sign)) sign = insphere_exact(P[0], P[1], P[2], P[3], P[4]);
-            if (sign == 0) {
-                const float* const points[5] = {point(cell.v[0]), point(cell.v[1]), point(cell.v[2]), point(cell.v[3]), point(p)};
-                const uint32_t indices[5] = {cell.v[0], cell.v[1], cell.v[2], cell.v[3], p};
-                sign = insphere_tie(points, indices);
-            }
-            conflict = sign > 0;
+            conflict = TP_SPHERE_KERNEL::filter(P, &sign) ? sign > 0 : inside_exactly(t, p);
         } else {
-            const int side = orient3d(point(cell.v[0]), point(cell.v[1]), point(cell.v[2]), point(p));
-            conflict = side > 0 || (side == 0 && in_conflict(cell.n[3] >> 2, p));
+            conflict = beyond_hull_facet(t, p);
         }
         mark_[t] = stamp_ << 1 | (conflict ? 0u : 1u);
         if (conflict) cavity_.push_back(t);
         return conflict;
+    }
+
+    // The rare cases, out of the hot path: the exact in-sphere sign with the tie rule, and the test
+    // of a cell at infinity.
+    __attribute__((noinline)) bool inside_exactly(uint32_t t, uint32_t p) {
+        const Tet& cell = tets_[t];
+        const float* const points[5] = {point(cell.v[0]), point(cell.v[1]), point(cell.v[2]), point(cell.v[3]), point(p)};
+        int sign = insphere_exact(points[0], points[1], points[2], points[3], points[4]);
+        if (sign == 0) {
+            const uint32_t indices[5] = {cell.v[0], cell.v[1], cell.v[2], cell.v[3], p};
+            sign = insphere_tie(points, indices);
+        }
+        return sign > 0;
+    }
+
+    __attribute__((noinline)) bool beyond_hull_facet(uint32_t t, uint32_t p) {
+        const Tet& cell = tets_[t];
+        const int side = orient3d(point(cell.v[0]), point(cell.v[1]), point(cell.v[2]), point(p));
+        return side > 0 || (side == 0 && in_conflict(cell.n[3] >> 2, p));
     }
 
     bool in_conflict(uint32_t t, uint32_t p) {
@@ -220,10 +240,16 @@ private:
 
         // One new cell per boundary facet: the cavity cell's vertices with the point in the slot of
         // the vertex the facet faces away from (so it keeps the cavity cell's orientation). New cells
-        // meet across the boundary's edges (EdgeLinks). The cavity's cells are freed last, so new
-        // cells reuse the previous insertion's.
-        edges_.start(boundary_.size() * 3);
-        uint32_t finite = kInfinite;
+        // meet across the boundary's edges: each new facet is filed under its half-edge and meets the
+        // facet filed under the reverse (the boundary is a closed surface wound alike throughout),
+        // in a table indexed by the boundary vertices' local numbers (EdgeLinks' hashing only for a
+        // cavity with very many vertices, as a cospherical set can make). The cavity's cells are
+        // freed last, so new cells reuse the previous insertion's.
+        // A closed triangulated sphere with F facets has F / 2 + 2 vertices.
+        const bool direct = boundary_.size() / 2 + 2 <= kDirectVertices;
+        if (!direct) edges_.start(boundary_.size() * 3);
+        if (filed_.size() < boundary_.size() * 3) filed_.resize(boundary_.size() * 3);
+        uint32_t numbered = 0, filed = 0, finite = kInfinite;
         for (const Boundary& b : boundary_) {
             const uint32_t t = new_cell();
             Tet& cell = tets_[t];
@@ -231,10 +257,31 @@ private:
             cell.v[b.facet] = p;
             cell.n[b.facet] = b.outside;
             tets_[b.outside >> 2].n[b.outside & 3] = t * 4 + b.facet;
-            for (const FacetEdge& e : kFacetEdges[b.facet]) edges_.add(cell.v[e.end0], cell.v[e.end1], t * 4 + e.facet);
+            if (direct) {
+                uint32_t number[4];
+                for (uint32_t k = 0; k < 4; ++k) {
+                    const uint32_t v = cell.v[k], at = v == kInfinite ? count_ : v;
+                    if (local_stamp_[at] != stamp_) {
+                        local_stamp_[at] = stamp_;
+                        local_[at] = numbered++;
+                    }
+                    number[k] = local_[at];  // p's own number is never read
+                }
+                for (const FacetEdge& e : kFacetEdges[b.facet]) {
+                    const uint32_t from = number[e.end0], to = number[e.end1], facet = t * 4 + e.facet;
+                    pairs_[from * kStride + to] = facet;
+                    filed_[filed++] = Filed{facet, to * kStride + from};
+                }
+            } else {
+                for (const FacetEdge& e : kFacetEdges[b.facet]) edges_.add(cell.v[e.end0], cell.v[e.end1], t * 4 + e.facet);
+            }
             if (finite == kInfinite && cell.v[3] != kInfinite) finite = t;
         }
-        edges_.finish([&](uint32_t x, uint32_t y) { tets_[x >> 2].n[x & 3] = y; });
+        if (direct) {
+            for (uint32_t i = 0; i < filed; ++i) tets_[filed_[i].facet >> 2].n[filed_[i].facet & 3] = pairs_[filed_[i].reverse];
+        } else {
+            edges_.finish([&](uint32_t x, uint32_t y) { tets_[x >> 2].n[x & 3] = y; });
+        }
         for (uint32_t c : cavity_) {
             tets_[c].v[0] = kDead;
             free_.push_back(c);
@@ -274,6 +321,9 @@ private:
     std::vector<float> padded_;  // 4 floats per point
     std::vector<uint32_t> cavity_;
     std::vector<Boundary> boundary_;
+    std::vector<uint32_t> local_, local_stamp_;  // per point (and one for infinity): number on the boundary
+    std::vector<uint32_t> pairs_;                // facet per (half-edge's local numbers)
+    std::vector<Filed> filed_;
     EdgeLinks edges_;
     uint32_t stamp_ = 0, last_ = 0;
 };

@@ -12,14 +12,16 @@ namespace tetprobe {
 
 struct ScalarInsphere {
     // P: a, b, c, d (a positively oriented tetrahedron) and e; the sign as insphere_filter's.
-    static inline bool filter(const float* const P[5], int* sign) { return insphere_filter(P[0], P[1], P[2], P[3], P[4], sign); }
+    __attribute__((always_inline)) static inline bool filter(const float* const P[5], int* sign) {
+        return insphere_filter(P[0], P[1], P[2], P[3], P[4], sign);
+    }
 };
 
 #ifdef TETPROBE_X86_64
 struct Avx2Insphere {
     // Lane i of X, Y, Z holds point i's difference from e; rotations pair the points as the scalar
     // expressions do: rot1 = (b, c, d, a), rot2 = (c, d, a, b).
-    __attribute__((target("avx2"))) static inline bool filter(const float* const P[5], int* sign) {
+    __attribute__((target("avx2"), always_inline)) static inline bool filter(const float* const P[5], int* sign) {
         __m128 p0 = _mm_loadu_ps(P[0]), p1 = _mm_loadu_ps(P[1]), p2 = _mm_loadu_ps(P[2]), p3 = _mm_loadu_ps(P[3]);
         _MM_TRANSPOSE4_PS(p0, p1, p2, p3);
         const __m256d X = _mm256_sub_pd(_mm256_cvtps_pd(p0), _mm256_set1_pd(P[4][0]));

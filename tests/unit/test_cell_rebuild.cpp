@@ -86,7 +86,7 @@ SimplexMesh tetgen_cells(const StoreData& d) {
 bool check_rebuild(const StoreData& d) {
     const tetprobe::RebuiltCells r =
         tetprobe::rebuild_cells(d.positions.data(), d.probe_count(), d.dimension, d.axis,
-                                !(d.flags & tetprobe::kFlagNoExtrapolation), d.bounds_min, d.bounds_max);
+                                !(d.flags & tetprobe::kFlagNoExtrapolation), d.bounds_min, d.bounds_max, d.grid);
     REQUIRE(r.inner_cell_count == d.inner_cell_count);
     REQUIRE(r.cell_vertices == d.cell_vertices);
     REQUIRE(r.cell_neighbours == d.cell_neighbours);
@@ -285,19 +285,21 @@ TEST_CASE("rebuild: ordering, outer cells and grid depend only on which cells th
 
 TEST_CASE("rebuild: bad dimensions and degenerate probes are refused with a status", "[rebuild]") {
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    const uint32_t grid[3] = {1, 1, 1}, no_grid[3] = {0, 1, 1};
     const float flat[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0, 0.5f, 0.5f, 0};
-    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 3, 0, true, lo, hi), tetprobe::Error);
-    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 4, 0, true, lo, hi), tetprobe::Error);
-    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 0, 0, true, lo, hi), tetprobe::Error);
+    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 3, 0, true, lo, hi, grid), tetprobe::Error);
+    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 4, 0, true, lo, hi, grid), tetprobe::Error);
+    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 0, 0, true, lo, hi, grid), tetprobe::Error);
     const float same[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 0, 0};
     try {
-        tetprobe::rebuild_cells(same, 5, 3, 0, true, lo, hi);
+        tetprobe::rebuild_cells(same, 5, 3, 0, true, lo, hi, grid);
         FAIL("a duplicate was accepted");
     } catch (const tetprobe::Error& e) {
         REQUIRE(e.status() == tetprobe::Status::invalid_argument);
     }
     // A flat set rebuilds in its plane.
-    const tetprobe::RebuiltCells r = tetprobe::rebuild_cells(flat, 5, 2, 2, true, lo, hi);
+    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 2, 2, true, lo, hi, no_grid), tetprobe::Error);
+    const tetprobe::RebuiltCells r = tetprobe::rebuild_cells(flat, 5, 2, 2, true, lo, hi, grid);
     REQUIRE(r.inner_cell_count == 4);
     REQUIRE(r.cell_vertices.size() == 4 * (4 + 4));
 }

@@ -222,3 +222,17 @@ TEST_CASE("delaunay3d: the portable and the AVX2 kernels build the same cells", 
         REQUIRE(portable == chosen);
     }
 }
+
+TEST_CASE("delaunay3d: a cavity with hundreds of boundary vertices gives the same tessellation", "[delaunay3d]") {
+    // The centre of an integer sphere inserted last is in conflict with every cell: its cavity's
+    // boundary is the whole hull (beyond the direct table's 255 vertices, so the hashed pairing).
+    PointSet s = sphere(45);
+    REQUIRE(s.count() == 510);
+    s.add(0, 0, 0);
+    std::vector<uint32_t> centre_last(s.count());
+    for (uint32_t i = 0; i < s.count(); ++i) centre_last[i] = i;
+    const SimplexMesh mesh = tetprobe::delaunay_cells_3d(s.xyz.data(), s.count(), centre_last);
+    REQUIRE(referee::delaunay_failure_3d(mesh, s.xyz.data(), s.count()).empty());
+    REQUIRE(referee::sorted_cells(mesh) == referee::sorted_cells(tetprobe::delaunay_cells_3d(s.xyz.data(), s.count())));
+    REQUIRE(referee::sorted_cells(mesh) == referee::sorted_cells(tetgen_cells(s)));
+}
