@@ -3,6 +3,7 @@
 #include "core/canonical_cells.h"
 #include "core/error.h"
 #include "core/insphere.h"
+#include "core/integer_predicates.h"
 #include "core/orientation.h"
 
 #include <algorithm>
@@ -125,7 +126,7 @@ private:
                 if (k == from) continue;
                 const float* y[3] = {x[0], x[1], x[2]};
                 y[k] = q;
-                if (orient2d(y[0], y[1], y[2]) < 0) exit = k;
+                if (orient2d_fast(y[0], y[1], y[2]) < 0) exit = k;
             }
             if (exit == 3) return t;
             from = cell.n[exit] & 3;
@@ -166,7 +167,7 @@ private:
             const uint32_t indices[4] = {cell.v[0], cell.v[1], cell.v[2], p};
             conflict = incircle_perturbed(points, indices) > 0;
         } else {
-            const int side = orient2d(point(cell.v[0]), point(cell.v[1]), point(p));
+            const int side = orient2d_fast(point(cell.v[0]), point(cell.v[1]), point(p));
             conflict = side > 0 || (side == 0 && in_conflict(cell.n[2] >> 2, p));
         }
         mark_[t] = stamp_ << 1 | (conflict ? 0u : 1u);

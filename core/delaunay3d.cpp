@@ -4,6 +4,7 @@
 #include "core/error.h"
 #include "core/insphere.h"
 #include "core/insphere_kernels.h"
+#include "core/integer_predicates.h"
 #include "core/orientation.h"
 #include "core/tetrahedron_orientations.h"
 
@@ -66,6 +67,7 @@ std::vector<uint32_t> insertion_order(uint32_t count) {
 struct Tet {
     uint32_t v[4];
     uint32_t n[4];
+    uint32_t mark;  // stamp << 1 | (1 = not in conflict) for the insertion of that stamp
 };
 
 // Pairs the facets of one insertion's new cells across the edges they share: each new facet is

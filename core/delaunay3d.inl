@@ -37,12 +37,11 @@ private:
         if (!free_.empty()) {
             const uint32_t t = free_.back();
             free_.pop_back();
-            mark_[t] = 0;
+            tets_[t].mark = 0;
             return t;
         }
         if (tets_.size() >= (size_t(1) << 30)) throw Error(Status::invalid_argument, "too many cells to tetrahedralize");
         tets_.push_back(Tet{});
-        mark_.push_back(0);
         return uint32_t(tets_.size() - 1);
     }
 
@@ -64,7 +63,6 @@ private:
     // The first four points of the order spanning a tetrahedron, as one cell and four at infinity.
     void start(const std::vector<uint32_t>& order) {
         tets_.reserve(size_t(count_) * 7 + 16);
-        mark_.reserve(tets_.capacity());
         initial_.assign(count_, 0);
         local_.assign(size_t(count_) + 1, 0);
         local_stamp_.assign(size_t(count_) + 1, 0);
@@ -141,7 +139,7 @@ private:
                 }
                 const float* y[4] = {point(cell.v[0]), point(cell.v[1]), point(cell.v[2]), point(cell.v[3])};
                 y[k] = q;
-                if (orient3d_exact(y[0], y[1], y[2], y[3]) < 0) exit = k;
+                if (orient3d_exact_fast(y[0], y[1], y[2], y[3]) < 0) exit = k;
             }
             if (exit == 4) return t;
             from = cell.n[exit] & 3;
@@ -186,7 +184,7 @@ private:
         } else {
             conflict = beyond_hull_facet(t, p);
         }
-        mark_[t] = stamp_ << 1 | (conflict ? 0u : 1u);
+        tets_[t].mark = stamp_ << 1 | (conflict ? 0u : 1u);
         if (conflict) cavity_.push_back(t);
         return conflict;
     }
@@ -206,12 +204,12 @@ private:
 
     __attribute__((noinline)) bool beyond_hull_facet(uint32_t t, uint32_t p) {
         const Tet& cell = tets_[t];
-        const int side = orient3d(point(cell.v[0]), point(cell.v[1]), point(cell.v[2]), point(p));
+        const int side = orient3d_fast(point(cell.v[0]), point(cell.v[1]), point(cell.v[2]), point(p));
         return side > 0 || (side == 0 && in_conflict(cell.n[3] >> 2, p));
     }
 
     bool in_conflict(uint32_t t, uint32_t p) {
-        const uint32_t state = mark_[t];
+        const uint32_t state = tets_[t].mark;
         return (state >> 1) == stamp_ ? (state & 1u) == 0 : classify(t, p);
     }
 
@@ -228,7 +226,7 @@ private:
         ++stamp_;
         cavity_.clear();
         boundary_.clear();
-        mark_[seed] = stamp_ << 1;
+        tets_[seed].mark = stamp_ << 1;
         cavity_.push_back(seed);
         for (size_t i = 0; i < cavity_.size(); ++i) {
             const uint32_t c = cavity_[i];
@@ -315,7 +313,6 @@ private:
     uint32_t count_;
 
     std::vector<Tet> tets_;
-    std::vector<uint32_t> mark_;  // stamp << 1 | (1 = not in conflict) for the insertion of that stamp
     std::vector<uint32_t> free_;
     std::vector<char> initial_;
     std::vector<float> padded_;  // 4 floats per point

@@ -1,11 +1,13 @@
 // The exact in-sphere and in-circle signs: every float coordinate is m * 2^x with an integer m of at
 // most 24 bits; scaled by 2^-k for the smallest x among the points, all of them are integers (below
 // 2^277), and the determinant of their differences is evaluated in exact integer arithmetic, in the
-// same expression as the filter's.
+// same expression as the filter's: in fixed width when they span few bits (integer_predicates.h),
+// else with the fixed-capacity integers of exact_integer.h.
 #include "core/insphere.h"
 
 #include "core/exact_integer.h"
 #include "core/float_bits.h"
+#include "core/integer_predicates.h"
 
 #include <algorithm>
 #include <climits>
@@ -37,10 +39,9 @@ FloatParts float_parts(float value) {
         parts.negative = false;
         return parts;
     }
-    while ((parts.significand & 1u) == 0) {
-        parts.significand >>= 1;
-        ++parts.exponent;
-    }
+    const int zeros = __builtin_ctz(parts.significand);
+    parts.significand >>= zeros;
+    parts.exponent += zeros;
     return parts;
 }
 
@@ -67,91 +68,6 @@ void scaled_differences(const float* const points[n], ExactInteger (&out)[n - 1]
             exact_scaled(p.significand, p.significand ? p.exponent - lowest : 0, p.negative, value);
             exact_subtract(value, last[c], out[i][c]);
         }
-}
-
-#if defined(__SIZEOF_INT128__)
-using Int128 = __int128;
-using Uint128 = unsigned __int128;
-
-// Differences below 2^31 in units of 2^lowest (the common case: nearby points of similar magnitude):
-// 2x2 minors fit in 63 bits, 3x3 minors in 96, lifts in 64 unsigned bits, and the determinant's four
-// terms (below 2^160) are summed as 192-bit magnitudes, positive and negative apart.
-struct Wide {
-    uint64_t limb[3] = {0, 0, 0};
-    void add_product(uint64_t lift, Uint128 minor) {  // += lift * minor, minor < 2^96
-        const Uint128 low = Uint128(lift) * uint64_t(minor), high = Uint128(lift) * uint64_t(minor >> 64);
-        Uint128 sum = Uint128(limb[0]) + uint64_t(low);
-        limb[0] = uint64_t(sum);
-        sum = (sum >> 64) + limb[1] + uint64_t(low >> 64) + uint64_t(high);
-        limb[1] = uint64_t(sum);
-        limb[2] += uint64_t(sum >> 64) + uint64_t(high >> 64);
-    }
-};
-
-int compare_wide(const Wide& a, const Wide& b) {
-    for (int i = 2; i >= 0; --i)
-        if (a.limb[i] != b.limb[i]) return a.limb[i] < b.limb[i] ? -1 : 1;
-    return 0;
-}
-
-// The small-integer evaluation of insphere_sign; false when some difference is too large for it.
-bool insphere_small(const int64_t (&d)[4][3], int* sign) {
-    for (const auto& row : d)
-        for (int64_t x : row)
-            if (x >= (int64_t(1) << 31) || x <= -(int64_t(1) << 31)) return false;
-    enum { x = 0, y = 1, z = 2 };
-    const auto& a = d[0];
-    const auto& b = d[1];
-    const auto& c = d[2];
-    const auto& e = d[3];
-    const int64_t ab = a[x] * b[y] - b[x] * a[y], bc = b[x] * c[y] - c[x] * b[y];
-    const int64_t cd = c[x] * e[y] - e[x] * c[y], da = e[x] * a[y] - a[x] * e[y];
-    const int64_t ac = a[x] * c[y] - c[x] * a[y], bd = b[x] * e[y] - e[x] * b[y];
-    const Int128 abc = Int128(a[z]) * bc - Int128(b[z]) * ac + Int128(c[z]) * ab;
-    const Int128 bcd = Int128(b[z]) * cd - Int128(c[z]) * bd + Int128(e[z]) * bc;
-    const Int128 cda = Int128(c[z]) * da + Int128(e[z]) * ac + Int128(a[z]) * cd;
-    const Int128 dab = Int128(e[z]) * ab + Int128(a[z]) * bd + Int128(b[z]) * da;
-    auto lift = [](const int64_t* v) {
-        return uint64_t(v[0] * v[0]) + uint64_t(v[1] * v[1]) + uint64_t(v[2] * v[2]);
-    };
-    // Shewchuk's det = dlift * abc - clift * dab + blift * cda - alift * bcd; ours is minus it.
-    Wide positive, negative;
-    auto add = [&](uint64_t l, Int128 m, bool subtract) {
-        const bool negative_term = (m < 0) != subtract;
-        const Uint128 magnitude = m < 0 ? Uint128(-m) : Uint128(m);
-        (negative_term ? negative : positive).add_product(l, magnitude);
-    };
-    add(lift(e), abc, false);
-    add(lift(c), dab, true);
-    add(lift(b), cda, false);
-    add(lift(a), bcd, true);
-    *sign = -compare_wide(positive, negative);
-    return true;
-}
-#endif
-
-// The differences of scaled_differences as 64-bit integers, when every scaled coordinate is below
-// 2^62 (shifts up to 38 bits); false otherwise.
-template <int n, int dims>
-bool small_differences(const float* const points[n], int64_t (&out)[n - 1][dims]) {
-    FloatParts parts[n][dims];
-    int lowest = INT_MAX, highest = INT_MIN;
-    for (int i = 0; i < n; ++i)
-        for (int c = 0; c < dims; ++c) {
-            parts[i][c] = float_parts(points[i][c]);
-            if (parts[i][c].significand == 0) continue;
-            lowest = std::min(lowest, parts[i][c].exponent);
-            highest = std::max(highest, parts[i][c].exponent);
-        }
-    if (lowest == INT_MAX) lowest = highest = 0;
-    if (highest - lowest > 38) return false;
-    auto value = [&](const FloatParts& p) {
-        const int64_t magnitude = p.significand ? int64_t(p.significand) << (p.exponent - lowest) : 0;
-        return p.negative ? -magnitude : magnitude;
-    };
-    for (int i = 0; i + 1 < n; ++i)
-        for (int c = 0; c < dims; ++c) out[i][c] = value(parts[i][c]) - value(parts[n - 1][c]);
-    return true;
 }
 
 // x * y - z * w
@@ -250,17 +166,16 @@ int sort_by_index(int (&order)[n], const uint32_t* indices) {
 
 int insphere_exact(const float a[3], const float b[3], const float c[3], const float d[3], const float e[3]) {
     const float* const points[5] = {a, b, c, d, e};
-#if defined(__SIZEOF_INT128__)
-    int64_t small[4][3];
     int sign;
-    if (small_differences<5, 3>(points, small) && insphere_small(small, &sign)) return sign;
-#endif
+    if (insphere_integer(a, b, c, d, e, &sign)) return sign;
     ExactInteger differences[4][3];
     scaled_differences<5, 3>(points, differences);
     return insphere_sign(differences);
 }
 
 int incircle_exact(const float a[2], const float b[2], const float c[2], const float d[2]) {
+    int sign;
+    if (incircle_integer(a, b, c, d, &sign)) return sign;
     const float* const points[4] = {a, b, c, d};
     ExactInteger differences[3][2];
     scaled_differences<4, 2>(points, differences);
@@ -277,8 +192,8 @@ int insphere_tie(const float* const points[5], const uint32_t indices[5]) {
     const int parity = sort_by_index(order, indices);
     const float* q[5];
     for (int i = 0; i < 5; ++i) q[i] = points[order[i]];
-    int sign = orient3d(q[1], q[2], q[3], q[4]);
-    if (sign == 0) sign = -orient3d(q[0], q[2], q[3], q[4]);
+    int sign = orient3d_fast(q[1], q[2], q[3], q[4]);
+    if (sign == 0) sign = -orient3d_fast(q[0], q[2], q[3], q[4]);
     return parity * sign;
 }
 
@@ -290,8 +205,8 @@ int incircle_tie(const float* const points[4], const uint32_t indices[4]) {
     const int parity = sort_by_index(order, indices);
     const float* q[4];
     for (int i = 0; i < 4; ++i) q[i] = points[order[i]];
-    int sign = orient2d(q[1], q[2], q[3]);
-    if (sign == 0) sign = -orient2d(q[0], q[2], q[3]);
+    int sign = orient2d_fast(q[1], q[2], q[3]);
+    if (sign == 0) sign = -orient2d_fast(q[0], q[2], q[3]);
     return -parity * sign;
 }
 

@@ -1,6 +1,7 @@
 #include "core/start_grid.h"
 
 #include "core/error.h"
+#include "core/integer_predicates.h"
 #include "core/orientation.h"
 #include "core/store_format.h"
 #include "core/tetrahedron_orientations.h"
@@ -36,7 +37,7 @@ uint32_t walk_inner_cells_3d(const StoreData& data, const float* padded, const f
             } else {
                 const float* z[4] = {x[0], x[1], x[2], x[3]};
                 z[k] = p;
-                if (orient3d_exact(z[0], z[1], z[2], z[3]) < 0) beyond = k;
+                if (orient3d_exact_fast(z[0], z[1], z[2], z[3]) < 0) beyond = k;
             }
         }
         if (beyond == 4) return cell;
@@ -71,7 +72,7 @@ uint32_t walk_inner_cells_low(const StoreData& data, const float p[3], uint32_t 
             for (uint32_t k = 0; k < 3 && beyond == 4; ++k) {
                 const float* z[3] = {y[0], y[1], y[2]};
                 z[k] = q2;
-                if (orient2d(z[0], z[1], z[2]) < 0) beyond = k;
+                if (orient2d_fast(z[0], z[1], z[2]) < 0) beyond = k;
             }
         }
         if (beyond == 4) return cell;
