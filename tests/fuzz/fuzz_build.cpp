@@ -7,9 +7,12 @@
 // come either from small integers times a scale plus an offset, so that duplicates, lines, planes and
 // lattices are common, or (mode bit 16) from raw float bits (denormals next to 1e19, tiny gaps).
 // Mode bit 64 adds scene data: occlusion bytes and a wall through the middle of the set (leak
-// control), which must keep every answer valid and every probe's own answer exact.
+// control), which must keep every answer valid and every probe's own answer exact. Every store that
+// builds rebuilds its cells, neighbours and start grid from its stored probes exactly
+// (core/cell_rebuild.h), whatever ties or magnitudes the set holds.
 #include "bake/scene.h"
 #include "bake/store_builder.h"
+#include "core/cell_rebuild.h"
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_format.h"
@@ -74,6 +77,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         d = tetprobe::build_store_data(positions.data(), 12, sh.data(), 108, count, settings);
     } catch (const tetprobe::Error&) {
         return 0;  // refused with a status: fine, as long as the process is alive
+    }
+    // A store that keeps no cells would rebuild these exactly.
+    try {
+        const tetprobe::RebuiltCells r =
+            tetprobe::rebuild_cells(d.positions.data(), d.probe_count(), d.dimension, d.axis,
+                                    !(d.flags & tetprobe::kFlagNoExtrapolation), d.bounds_min, d.bounds_max, d.grid);
+        if (r.inner_cell_count != d.inner_cell_count || r.cell_vertices != d.cell_vertices ||
+            r.cell_neighbours != d.cell_neighbours || r.grid_cells != d.grid_cells)
+            __builtin_trap();
+    } catch (const tetprobe::Error&) {
+        __builtin_trap();
     }
     // What builds must write and load (the loader validates orientations and neighbours too).
     std::unique_ptr<tetprobe::Store> store;
