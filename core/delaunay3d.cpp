@@ -133,8 +133,12 @@ private:
 #undef TP_SPHERE_KERNEL
 #undef TP_ORIENT_KERNEL
 #ifdef TETPROBE_X86_64
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx2")
+#endif
 #define TP_TETRAHEDRALIZATION Avx2Tetrahedralization
 #define TP_SPHERE_KERNEL Avx2Insphere
 #define TP_ORIENT_KERNEL Avx2Orientations
@@ -142,7 +146,11 @@ private:
 #undef TP_TETRAHEDRALIZATION
 #undef TP_SPHERE_KERNEL
 #undef TP_ORIENT_KERNEL
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif
 #endif
 
 SimplexMesh tetrahedralize(const float* positions, uint32_t count, const std::vector<uint32_t>& order) {
