@@ -64,8 +64,7 @@ private:
     void start(const std::vector<uint32_t>& order) {
         tets_.reserve(size_t(count_) * 7 + 16);
         initial_.assign(count_, 0);
-        local_.assign(size_t(count_) + 1, 0);
-        local_stamp_.assign(size_t(count_) + 1, 0);
+        local_.assign(size_t(count_) + 1, Local{0, 0});
         pairs_.assign(size_t(kStride) * kStride, 0);
         const uint32_t a = order[0], b = order[1];
         uint32_t c = kInfinite, d = kInfinite;
@@ -259,11 +258,9 @@ private:
                 uint32_t number[4];
                 for (uint32_t k = 0; k < 4; ++k) {
                     const uint32_t v = cell.v[k], at = v == kInfinite ? count_ : v;
-                    if (local_stamp_[at] != stamp_) {
-                        local_stamp_[at] = stamp_;
-                        local_[at] = numbered++;
-                    }
-                    number[k] = local_[at];  // p's own number is never read
+                    Local& local = local_[at];
+                    if (local.stamp != stamp_) local = Local{stamp_, numbered++};
+                    number[k] = local.number;  // p's own number is never read
                 }
                 for (const FacetEdge& e : kFacetEdges[b.facet]) {
                     const uint32_t from = number[e.end0], to = number[e.end1], facet = t * 4 + e.facet;
@@ -318,7 +315,10 @@ private:
     std::vector<float> padded_;  // 4 floats per point
     std::vector<uint32_t> cavity_;
     std::vector<Boundary> boundary_;
-    std::vector<uint32_t> local_, local_stamp_;  // per point (and one for infinity): number on the boundary
+    struct Local {
+        uint32_t stamp, number;  // the insertion that numbered the point, its number on the boundary
+    };
+    std::vector<Local> local_;  // per point, and one for infinity
     std::vector<uint32_t> pairs_;                // facet per (half-edge's local numbers)
     std::vector<Filed> filed_;
     EdgeLinks edges_;
