@@ -35,10 +35,11 @@ constexpr FacetEdge kFacetEdges[4][3] = {{{1, 3, 2}, {2, 1, 3}, {3, 2, 1}},
                                          {{0, 3, 1}, {1, 0, 3}, {3, 1, 0}},
                                          {{0, 1, 2}, {1, 2, 0}, {2, 0, 1}}};
 
-// The order points are inserted in: rounds of growing size (a point's round is drawn from a hash of
-// its index), each in the given order. Mixing coarse rounds in first keeps the cavities small (the
-// biased randomized insertion order of Amenta, Choi and Rote); the given space-filling-curve order
-// within a round keeps each walk short. Any order gives the same tessellation.
+// The order points are inserted in: rounds each about four times the size of the one before (a
+// point's round is drawn from a hash of its index), each in the given order. Mixing coarse rounds in
+// first keeps the cavities small (the biased randomized insertion order of Amenta, Choi and Rote);
+// the given space-filling-curve order within a round keeps each walk short and its cells in cache.
+// Any order gives the same tessellation.
 std::vector<uint32_t> insertion_order(uint32_t count) {
     constexpr int kRounds = 16;
     std::vector<uint32_t> round_of(count), starts(kRounds + 1, 0);
@@ -52,6 +53,7 @@ std::vector<uint32_t> insertion_order(uint32_t count) {
             h >>= 1;
             ++r;
         }
+        r /= 2;  // trailing ones in pairs: each round a quarter of the next
         round_of[i] = uint32_t(kRounds - 1 - r);  // the rarest rounds first
         ++starts[round_of[i] + 1];
     }
