@@ -129,13 +129,31 @@ void merge_equal_plane_coordinates(const std::vector<Eigen::Vector3d>& points, c
     groups.apply(merge);
 }
 
-// Whether two meshes in canonical form hold the same cells (in any order).
+// Whether two meshes in canonical form hold the same cells (in any order): b's cells are filed in an
+// open-addressing table and every cell of a must be found there once.
 bool same_cells(const SimplexMesh& a, const SimplexMesh& b) {
     if (a.cell_count() != b.cell_count()) return false;
-    std::vector<CellSlots> x = a.vertices, y = b.vertices;
-    std::sort(x.begin(), x.end());
-    std::sort(y.begin(), y.end());
-    return x == y;
+    size_t capacity = 16;
+    while (capacity < 2 * b.cell_count()) capacity *= 2;
+    std::vector<uint32_t> table(capacity, kNone32);  // cell of b, or empty
+    std::vector<char> found(b.cell_count(), 0);
+    auto slot_of = [&](const CellSlots& v) {
+        uint64_t h = 0;
+        for (uint32_t x : v) h = (h ^ x) * 0x9E3779B97F4A7C15ull;
+        return size_t(h >> 20) & (capacity - 1);
+    };
+    for (uint32_t c = 0; c < b.cell_count(); ++c) {
+        size_t at = slot_of(b.vertices[c]);
+        while (table[at] != kNone32) at = (at + 1) & (capacity - 1);
+        table[at] = c;
+    }
+    for (const CellSlots& v : a.vertices) {
+        size_t at = slot_of(v);
+        while (table[at] != kNone32 && b.vertices[table[at]] != v) at = (at + 1) & (capacity - 1);
+        if (table[at] == kNone32 || found[table[at]]) return false;
+        found[table[at]] = 1;
+    }
+    return true;
 }
 
 // The inner cells of the stored probes in their own dimension, in canonical form: TetGen's Delaunay
