@@ -9,11 +9,15 @@
 #include "core/start_grid.h"
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 #include <utility>
 
 namespace tetprobe {
 
 SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis) {
+    if (axis > 2 || ((dimension == 0 || dimension == 3) && axis != 0))
+        throw Error(Status::invalid_argument, "axis " + std::to_string(axis) + " does not fit dimension " + std::to_string(dimension));
     switch (dimension) {
         case 0: {
             if (probe_count != 1) throw Error(Status::degenerate, "a point set holds exactly one probe");
@@ -49,6 +53,9 @@ void store_cells(SimplexMesh mesh, StoreData& data) {
 RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
                            bool extrapolate, const float bounds_min[3], const float bounds_max[3],
                            const uint32_t grid[3]) {
+    for (int a = 0; a < 3; ++a)
+        if (!(std::isfinite(bounds_min[a]) && std::isfinite(bounds_max[a]) && bounds_min[a] <= bounds_max[a]))
+            throw Error(Status::invalid_argument, "the bounds are not finite and ordered");
     StoreData data;
     data.flags = extrapolate ? 0u : kFlagNoExtrapolation;
     data.dimension = dimension;

@@ -18,9 +18,10 @@
 
 namespace tetprobe {
 
-// Step 1 for probe_count probes (3 floats each) of the given dimension (0..3) and axis
-// (store_format.h). Throws Error(Status::degenerate) when the probes do not span that dimension and
-// Error(Status::invalid_argument) for two probes a cell could not tell apart.
+// Step 1 for probe_count probes (3 finite floats each, as a validated store holds them) of the given
+// dimension (0..3) and axis (store_format.h). Throws Error(Status::degenerate) when the probes do not
+// span that dimension, and Error(Status::invalid_argument) for two probes a cell could not tell apart
+// or an axis that does not fit the dimension.
 SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis);
 
 // Step 2: fills data.inner_cell_count, cell_vertices and cell_neighbours from mesh (of data.dimension,
@@ -39,8 +40,10 @@ struct RebuiltCells {
 // axis, bounds and start grid dimensions, and whether it extrapolates (no kFlagNoExtrapolation).
 // Gives exactly the cells, neighbours and start grid the builder stored for these probes in the
 // layouts that keep them (tests/unit/test_cell_rebuild.cpp proves it on every hard-case family), on
-// any platform: every step is exact predicates, integers and plain IEEE arithmetic. Allocates; throws
-// Error as inner_cells and fill_start_grid do, which a loader reports as an invalid blob.
+// any platform: every step is exact predicates, integers and plain IEEE arithmetic. Allocates (like
+// any Delaunay, adversarial sets such as probes on two skew lines make quadratically many cells: a
+// loader of untrusted blobs bounds probe_count); throws Error as inner_cells and fill_start_grid do
+// and for bounds that are not finite and ordered, which a loader reports as an invalid blob.
 RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
                            bool extrapolate, const float bounds_min[3], const float bounds_max[3],
                            const uint32_t grid[3]);

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <cmath>
 #include <random>
 #include <string>
 #include <vector>
@@ -297,6 +298,10 @@ TEST_CASE("rebuild: bad dimensions and degenerate probes are refused with a stat
     } catch (const tetprobe::Error& e) {
         REQUIRE(e.status() == tetprobe::Status::invalid_argument);
     }
+    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 2, 3, true, lo, hi, grid), tetprobe::Error);
+    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 1, 7, true, lo, hi, grid), tetprobe::Error);
+    const float nan_hi[3] = {1, std::nanf(""), 1};
+    REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 2, 2, true, lo, nan_hi, grid), tetprobe::Error);
     // A flat set rebuilds in its plane.
     REQUIRE_THROWS_AS(tetprobe::rebuild_cells(flat, 5, 2, 2, true, lo, hi, no_grid), tetprobe::Error);
     const tetprobe::RebuiltCells r = tetprobe::rebuild_cells(flat, 5, 2, 2, true, lo, hi, grid);
