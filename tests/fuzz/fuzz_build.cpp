@@ -11,8 +11,11 @@
 // a set of up to 600 probes from a few bytes (grow_set: lattices, jittered or not, in 3, 2 or 1
 // dimensions, tilted planes, lines, clusters, shells, clouds), which the remaining bytes then edit probe by probe, so that sets of
 // hundreds of probes are reached (the byte decoder alone takes 3 bytes a probe).
+// Every store that builds rebuilds its cells, neighbours and start grid from its stored probes exactly
+// (core/cell_rebuild.h), whatever ties or magnitudes the set holds.
 #include "bake/scene.h"
 #include "bake/store_builder.h"
+#include "core/cell_rebuild.h"
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_format.h"
@@ -166,6 +169,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         d = tetprobe::build_store_data(positions.data(), 12, sh.data(), 108, count, settings);
     } catch (const tetprobe::Error&) {
         return 0;  // refused with a status: fine, as long as the process is alive
+    }
+    // A store that keeps no cells would rebuild these exactly.
+    try {
+        const tetprobe::RebuiltCells r =
+            tetprobe::rebuild_cells(d.positions.data(), d.probe_count(), d.dimension, d.axis,
+                                    !(d.flags & tetprobe::kFlagNoExtrapolation), d.bounds_min, d.bounds_max, d.grid);
+        if (r.inner_cell_count != d.inner_cell_count || r.cell_vertices != d.cell_vertices ||
+            r.cell_neighbours != d.cell_neighbours || r.grid_cells != d.grid_cells)
+            __builtin_trap();
+    } catch (const tetprobe::Error&) {
+        __builtin_trap();
     }
     // What builds must write and load (the loader validates orientations and neighbours too).
     std::unique_ptr<tetprobe::Store> store;

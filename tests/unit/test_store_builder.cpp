@@ -11,7 +11,7 @@
 #include "bake/delaunay.h"
 #include "bake/probe_merge.h"
 #include "bake/set_dimension.h"
-#include "bake/start_grid.h"
+#include "core/start_grid.h"
 #include "bake/store_builder.h"
 #include "capi/tetprobe.h"
 #include "core/error.h"

@@ -21,7 +21,9 @@ std::vector<uint32_t> curve_order(const std::vector<Eigen::Vector3d>& points, co
 // Reorders data's cells in place: inner cells by the Morton code of their centroid, then the inner
 // cell whose centroid is nearest the centre of the probes' bounds swapped into slot 0 (the start of
 // hint-less walks); outer cells after all inner cells, Morton-ordered by the centroid of their probes.
-// Neighbour links follow. Needs positions, bounds and cells filled.
+// Cells with equal codes (and equally near the centre) go by their vertex slots, so the order
+// depends only on which cells there are, not on the order they came in: TetGen's cells and core's
+// for the same probes end up identical. Neighbour links follow. Needs positions, bounds and cells.
 void order_cells_for_locality(StoreData& data);
 
 // 63-bit Morton code of p quantised over [lo, hi] (21 bits per axis, x lowest).

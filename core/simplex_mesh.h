@@ -1,7 +1,7 @@
 // SimplexMesh: the inner cells of a probe set of dimension d (0..3) as plain arrays, in the store's
 // slot convention: vertices in slots 0..d, neighbour k across the facet opposite vertex k, kNone32
-// where there is none, unused slots kNone32. It is what every triangulation path hands to the hull,
-// outer-cell, matrix and ordering stages.
+// where there is none, unused slots kNone32. It is what every triangulation path (TetGen's at bake
+// time, core's exact ones) hands to the hull, outer-cell and ordering stages.
 #pragma once
 
 #include "core/store_format.h"

@@ -1,6 +1,6 @@
-#include "bake/hull.h"
+#include "core/hull_normals.h"
 
-#include "core/error.h"
+#include "core/hull_cells.h"
 
 #include <Eigen/Geometry>
 
@@ -11,6 +11,41 @@
 namespace tetprobe {
 
 namespace {
+
+struct Hull {
+    std::vector<HullFacet> facets;
+    std::vector<Eigen::Vector3d> vertex_normals;
+};
+
+// The hull facets of finished cells in stored order: each outer cell's, or without outer cells each
+// inner cell's facet without neighbour.
+std::vector<HullFacet> stored_hull_facets(const StoreData& data) {
+    std::vector<HullFacet> facets;
+    const uint32_t d = data.dimension, inner = data.inner_cell_count, cells = data.cell_count();
+    if (d == 0) return facets;
+    if (cells == inner) {
+        for (uint32_t c = 0; c < inner; ++c)
+            for (uint32_t k = 0; k <= d; ++k) {
+                if (data.cell_neighbours[size_t(c) * 4 + k] != kNone32) continue;
+                HullFacet facet;
+                facet.probes = hull_facet_probes(&data.cell_vertices[size_t(c) * 4], k, d);
+                facet.inner_cell = c;
+                facet.inner_slot = k;
+                facets.push_back(facet);
+            }
+        return facets;
+    }
+    // Outer cell o holds its facet's probes and rests on inner cell neighbour d, whose slot links back.
+    for (uint32_t o = inner; o < cells; ++o) {
+        HullFacet facet;
+        for (uint32_t k = 0; k < d; ++k) facet.probes[k] = data.cell_vertices[size_t(o) * 4 + k];
+        facet.inner_cell = data.cell_neighbours[size_t(o) * 4 + d];
+        for (uint32_t k = 0; k <= d; ++k)
+            if (data.cell_neighbours[size_t(facet.inner_cell) * 4 + k] == o) facet.inner_slot = k;
+        facets.push_back(facet);
+    }
+    return facets;
+}
 
 // A facet whose 2 area / longest edge^2 is below this (an equilateral one has 0.87) is a sliver: it
 // counts in the vertex normals in proportion to that shape, and takes its flat region's direction.
@@ -104,22 +139,7 @@ double corner_angle(const Eigen::Vector3d& a, const Eigen::Vector3d& b, const Ei
     return std::atan2(u.cross(v).norm(), u.dot(v));
 }
 
-void add_facets_3d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, Hull& hull) {
-    // The facet opposite slot k, ordered so that orient3d(facet, v[k]) = -orient3d(v0, v1, v2, v3):
-    // outward for a positively oriented cell, with no arithmetic (a flat cell's facet included).
-    static const int kOthers[4][3] = {{1, 2, 3}, {0, 3, 2}, {0, 1, 3}, {0, 2, 1}};
-    for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
-        for (uint32_t k = 0; k < 4; ++k) {
-            if (mesh.neighbours[c][k] != kNone32) continue;
-            const CellSlots& v = mesh.vertices[c];
-            const uint32_t a = v[size_t(kOthers[k][0])], b = v[size_t(kOthers[k][1])], d = v[size_t(kOthers[k][2])];
-            HullFacet facet;
-            facet.probes = {a, b, d, kNone32};
-            facet.inner_cell = c;
-            facet.inner_slot = k;
-            hull.facets.push_back(facet);
-        }
-    }
+void add_normals_3d(const std::vector<Eigen::Vector3d>& p, Hull& hull) {
     // Angle-weighted means of the facets' flat-region normals (see flat_region_normals), with
     // slivers weighted down by their shape: a sliver's middle corner is nearly a straight angle.
     const std::vector<Eigen::Vector3d> region = flat_region_normals(hull, p);
@@ -135,45 +155,28 @@ void add_facets_3d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& 
     }
 }
 
-void add_facets_2d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const SetShape& shape,
-                   Hull& hull) {
-    const Eigen::Vector3d& n = shape.axes.col(2);
-    for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
-        for (uint32_t k = 0; k < 3; ++k) {
-            if (mesh.neighbours[c][k] != kNone32) continue;
-            const CellSlots& v = mesh.vertices[c];
-            // orient2d(v[k+1], v[k+2], v[k]) = orient2d(v0, v1, v2) > 0, so the reverse edge has the
-            // cell on its negative side: outward winding with no arithmetic.
-            const uint32_t a = v[(k + 2) % 3], b = v[(k + 1) % 3];
-            HullFacet facet;
-            facet.probes = {a, b, kNone32, kNone32};
-            facet.inner_cell = c;
-            facet.inner_slot = k;
-            hull.facets.push_back(facet);
-            // In-plane normal of the edge, turned to the positive (left) side of a -> b in (u, v).
-            Eigen::Vector3d outward = n.cross(p[b] - p[a]).normalized();
-            const Eigen::Vector2d e = shape.plane_coordinates(p[b]) - shape.plane_coordinates(p[a]);
-            const Eigen::Vector2d w = shape.plane_coordinates(outward);
-            if (-e.y() * w.x() + e.x() * w.y() < 0) outward = -outward;
-            hull.vertex_normals[a] += outward;
-            hull.vertex_normals[b] += outward;
-        }
+// The two stored coordinates other than axis, in increasing axis order (the run time's (u, v)).
+Eigen::Vector2d plane_coordinates(const Eigen::Vector3d& p, uint32_t axis) {
+    return axis == 0 ? Eigen::Vector2d(p.y(), p.z()) : axis == 1 ? Eigen::Vector2d(p.x(), p.z()) : Eigen::Vector2d(p.x(), p.y());
+}
+
+void add_normals_2d(const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& n, uint32_t axis, Hull& hull) {
+    for (const HullFacet& f : hull.facets) {
+        const uint32_t a = f.probes[0], b = f.probes[1];
+        // In-plane normal of the edge, turned to the positive (left) side of a -> b in (u, v).
+        Eigen::Vector3d outward = n.cross(p[b] - p[a]).normalized();
+        const Eigen::Vector2d e = plane_coordinates(p[b], axis) - plane_coordinates(p[a], axis);
+        const Eigen::Vector2d w = plane_coordinates(outward, axis);
+        if (-e.y() * w.x() + e.x() * w.y() < 0) outward = -outward;
+        hull.vertex_normals[a] += outward;
+        hull.vertex_normals[b] += outward;
     }
 }
 
-void add_facets_1d(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& u,
-                   Hull& hull) {
-    for (uint32_t c = 0; c < mesh.cell_count(); ++c) {
-        for (uint32_t k = 0; k < 2; ++k) {
-            if (mesh.neighbours[c][k] != kNone32) continue;
-            const uint32_t end = mesh.vertices[c][1 - k], inner = mesh.vertices[c][k];
-            HullFacet facet;
-            facet.probes = {end, kNone32, kNone32, kNone32};
-            facet.inner_cell = c;
-            facet.inner_slot = k;
-            hull.facets.push_back(facet);
-            hull.vertex_normals[end] = (p[end] - p[inner]).dot(u) > 0 ? u : Eigen::Vector3d(-u);
-        }
+void add_normals_1d(const StoreData& data, const std::vector<Eigen::Vector3d>& p, const Eigen::Vector3d& u, Hull& hull) {
+    for (const HullFacet& f : hull.facets) {
+        const uint32_t end = f.probes[0], inner = data.cell_vertices[size_t(f.inner_cell) * 4 + f.inner_slot];
+        hull.vertex_normals[end] = (p[end] - p[inner]).dot(u) > 0 ? u : Eigen::Vector3d(-u);
     }
 }
 
@@ -260,21 +263,25 @@ void untangle_vertex_normals(Hull& hull, const std::vector<Eigen::Vector3d>& p) 
 
 }  // namespace
 
-Hull find_hull(const SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& positions, const SetShape& shape) {
+std::vector<Eigen::Vector3d> hull_vertex_normals(const StoreData& data, const Eigen::Vector3d& set_direction) {
+    std::vector<Eigen::Vector3d> positions(data.probe_count());
+    for (size_t j = 0; j < positions.size(); ++j)
+        positions[j] = Eigen::Vector3d(data.positions[3 * j], data.positions[3 * j + 1], data.positions[3 * j + 2]);
     Hull hull;
     hull.vertex_normals.assign(positions.size(), Eigen::Vector3d::Zero());
-    switch (mesh.dimension) {
-        case 3: add_facets_3d(mesh, positions, hull); break;
-        case 2: add_facets_2d(mesh, positions, shape, hull); break;
-        case 1: add_facets_1d(mesh, positions, shape.axes.col(0), hull); break;
-        default: return hull;
+    hull.facets = stored_hull_facets(data);
+    switch (data.dimension) {
+        case 3: add_normals_3d(positions, hull); break;
+        case 2: add_normals_2d(positions, set_direction, data.axis, hull); break;
+        case 1: add_normals_1d(data, positions, set_direction, hull); break;
+        default: return hull.vertex_normals;
     }
     for (auto& normal : hull.vertex_normals) {
         const double length = normal.norm();
         if (length > 0) normal /= length;
     }
-    if (mesh.dimension == 3) untangle_vertex_normals(hull, positions);
-    return hull;
+    if (data.dimension == 3) untangle_vertex_normals(hull, positions);
+    return hull.vertex_normals;
 }
 
 }  // namespace tetprobe
