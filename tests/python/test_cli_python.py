@@ -181,7 +181,7 @@ def test_plan_json_counts_the_probes_inside_geometry(tmp_path):
     # The two rooms plus a probe inside the table (a closed box from x 5.6 to 6.8, y 0 to 0.75, z 1.4 to 2.6).
     with open(os.path.join(SCENES, "two_rooms.json")) as f:
         document = json.load(f)
-    shutil.copy(os.path.join(SCENES, document["meshes"][0]["obj"]), tmp_path)
+    shutil.copy(os.path.join(SCENES, document["meshes"][0]["file"]), tmp_path)
     document["probes"].append([6.2, 0.4, 2.0])
     scene = tmp_path / "inside.json"
     scene.write_text(json.dumps(document))
