@@ -574,7 +574,7 @@ def load_scene(path):
 def command_bake(args):
     a = Arguments(args, {"-o", "--rays", "--bounces", "--seed", "--threads"}, set())
     if len(a.positional) != 1 or not a.has("-o"):
-        raise UsageError("bake takes SCENE.json and -o STORE")
+        raise UsageError("bake takes SCENE and -o STORE (or -o PROBES.csv)")
     settings = bake_settings(a, 256)
     scene, positions = load_scene(a.positional[0])
     plan = checked("planning the bake", bake_plan, scene, positions, **settings)
@@ -603,7 +603,7 @@ def command_bake(args):
 def command_plan(args):
     a = Arguments(args, {"--rays", "--bounces", "--seed", "--threads"}, {"--json"})
     if len(a.positional) != 1:
-        raise UsageError("plan takes SCENE.json")
+        raise UsageError("plan takes SCENE")
     settings = bake_settings(a, 256)
     scene, positions = load_scene(a.positional[0])
     plan = checked("planning the bake", bake_plan, scene, positions, **settings)
@@ -627,7 +627,7 @@ def command_place(args):
     a = Arguments(args, {"-o", "--mode", "--spacing", "--margin", "--target", "--error", "--rays", "--bounces",
                          "--seed", "--threads", "--curve", "--min-height", "--max-height"}, set())
     if len(a.positional) != 1 or not a.has("-o"):
-        raise UsageError("place takes SCENE.json and -o PROBES.csv")
+        raise UsageError("place takes SCENE and -o PROBES.csv")
     defaults = _native.PlacementOptions()
     checked("tp_placement_options_init", _native.check, _native.lib.tp_placement_options_init(ctypes.byref(defaults)))
     mode = a.value("--mode", "whole")
