@@ -3,16 +3,20 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 
-.PHONY: deps build demo test test-fast sanitize tsan fuzz fuzz-short cross bench bench-docs clean
+.PHONY: deps configure build demo test test-fast sanitize tsan fuzz fuzz-short cross bench bench-docs clean
 
 deps:
 	bash .ci/install-deps.sh
 
-build: deps
+configure: deps
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) >/dev/null
+
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# Only what the demo runs: the command-line tool and the library it links (not the tests or the benchmark).
+demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target tetprobe_cli
 	$(BUILD)/samples/tetprobe demo --out $(BUILD)/demo
 
 # Every test: the normal build, the ASan+UBSan build of the whole suite, a short fuzz run, and the

@@ -9,6 +9,7 @@ using System;
 using System.Runtime.InteropServices;
 #if UNITY_5_3_OR_NEWER
 using Vector3 = UnityEngine.Vector3;
+using Vector4 = UnityEngine.Vector4;
 #endif
 
 namespace TetProbe
@@ -117,6 +118,26 @@ namespace TetProbe
         public uint inside_probes;
     }
 
+    /// <summary>tp_placement_options.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativePlacementOptions
+    {
+        public uint struct_size;
+        public uint mode;
+        public float spacing;
+        public float margin;
+        public float walk_min_height;
+        public float walk_max_height;
+        public uint target_count;
+        public float error_bound;
+        public uint rays;
+        public uint bounces;
+        public ulong seed;
+        public uint threads;
+        public IntPtr progress;
+        public IntPtr progress_user;
+    }
+
     internal static class NativeMethods
     {
         // The plugin's name: the full library by default; the run-time library (stores and queries only) in a
@@ -140,6 +161,12 @@ namespace TetProbe
         public const uint LightSpot = 2;
         public const uint LightModeBaked = 0;
         public const uint LightModeRealtime = 1;
+        public const uint LightModeMixed = 2;
+        public const uint CellInner = 0;
+        public const uint PlacementWhole = 0;
+        public const uint PlacementWalkable = 1;
+        public const uint InsideDrop = 0;
+        public const uint InsidePush = 1;
         public const uint BakeNoCulling = 1;
         public const uint ShOrderL2 = 0;
         public const uint ShOrderL1 = 1;
@@ -223,6 +250,16 @@ namespace TetProbe
             ref NativeLocation location);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion(StoreHandle store, ref Vector3 position, ref int cell_hint,
+            out SphericalHarmonicsL2 sh, out Vector4 occlusion);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion_batch(StoreHandle store, UIntPtr count,
+            [In] Vector3[] positions, UIntPtr position_stride, [In, Out] int[] hints, UIntPtr hint_stride,
+            [Out] SphericalHarmonicsL2[] sh, UIntPtr sh_stride, [Out] Vector4[] occlusion, UIntPtr occlusion_stride,
+            ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_sh_eval_radiance(ref SphericalHarmonicsL2 sh, ref Vector3 direction, out Vector3 rgb);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
@@ -288,6 +325,16 @@ namespace TetProbe
         public static extern int tp_store_weights_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
             UIntPtr position_stride, IntPtr hints, UIntPtr hint_stride, ref uint probes, UIntPtr probes_stride,
             ref float weights, UIntPtr weights_stride, ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, ref int hints, UIntPtr hint_stride, ref SphericalHarmonicsL2 sh, UIntPtr sh_stride,
+            ref Vector4 occlusion, UIntPtr occlusion_stride, ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, IntPtr hints, UIntPtr hint_stride, ref SphericalHarmonicsL2 sh, UIntPtr sh_stride,
+            ref Vector4 occlusion, UIntPtr occlusion_stride, ref TpBatchOptions options);
 #endif
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
@@ -351,5 +398,29 @@ namespace TetProbe
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_bake(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
             UIntPtr count, ref NativeBakeOptions options, [Out] SphericalHarmonicsL2[] sh, UIntPtr sh_stride);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_bake_occlusion(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, ref NativeBakeOptions options, [Out] ProbeOcclusion[] occlusion, UIntPtr occlusion_stride,
+            out uint mixed_lights);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_placement_options_init(ref NativePlacementOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_place_probes_bound(SceneHandle scene, ref NativePlacementOptions options, out UIntPtr bound);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_place_probes(SceneHandle scene, ref NativePlacementOptions options,
+            [Out] Vector3[] positions, UIntPtr capacity, out UIntPtr count, [Out] float[] error_curve, UIntPtr curve_capacity,
+            out UIntPtr curve_points);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_find_inside_probes(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, [Out] uint[] indices, UIntPtr capacity, out UIntPtr found);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_fix_inside_probes(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, uint mode, float margin, [Out] Vector3[] fixed_positions, UIntPtr capacity, out UIntPtr fixed_count);
     }
 }

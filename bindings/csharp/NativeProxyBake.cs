@@ -163,5 +163,23 @@ namespace TetProbe
             }
             return result;
         }
+
+        /// <summary>tp_bake_occlusion: 4 bytes per position; mixedLights receives the scene's mixed light count.</summary>
+        public static ProbeOcclusion[] BakeOcclusion(SceneHandle scene, Vector3[] positions, NativeBakeOptions options,
+                                                     IProgress<float> progress, CancellationToken cancel, out int mixedLights)
+        {
+            var result = new ProbeOcclusion[positions.Length];
+            using (var bridge = ProgressBridge.Start(progress, cancel))
+            {
+                options.progress = bridge.Callback;
+                options.progress_user = bridge.User;
+                uint lights;
+                int status = NativeMethods.tp_bake_occlusion(scene, positions, PositionStride, (UIntPtr)positions.Length,
+                    ref options, result, (UIntPtr)4, out lights);
+                bridge.Finish(status);
+                mixedLights = (int)lights;
+            }
+            return result;
+        }
     }
 }

@@ -63,8 +63,11 @@ struct Image {
     int width = 0, height = 0;
     std::vector<unsigned char> rgb;
 };
-// Maps values to a perceptual-looking colour ramp (dark blue -> red -> yellow -> white) over [lo, hi].
-Image colour_map(const std::vector<float>& values, int width, int height, float lo, float hi);
+// Colour ramps: heat (dark blue -> red -> yellow -> white) for values, diverging (blue -> white -> red) for
+// differences around 0.
+enum class Ramp { heat, diverging };
+// Maps values to a ramp over [lo, hi].
+Image colour_map(const std::vector<float>& values, int width, int height, float lo, float hi, Ramp ramp = Ramp::heat);
 void mark(Image& image, int x, int y, const unsigned char colour[3], int radius);
 void write_png(const std::string& path, const Image& image);
 
@@ -79,9 +82,20 @@ struct SliceAxes {
     float x_lo, x_hi, z_lo, z_hi;
 };
 
+// A colour bar drawn right after panel `after_panel`: the ramp over [lo, hi] with ticks and a label.
+struct ColourBar {
+    size_t after_panel;
+    float lo, hi;
+    std::string label;
+    Ramp ramp = Ramp::heat;
+};
+
 // Panels of one size side by side on a white canvas (figure.cpp), each with its title, ticks in metres
-// and the labels "x (m)" and "z (m)", then a colour bar of colour_map's ramp over [value_lo, value_hi]
-// with ticks and value_label: a picture that says what its colours and distances mean.
+// and the labels "x (m)" and "z (m)", and colour bars among them (each after the panels it scales), then
+// an optional caption line below: a picture that says what its colours and distances mean.
+Image framed_figure(const std::vector<Image>& panels, const std::vector<std::string>& titles, const SliceAxes& axes,
+                    const std::vector<ColourBar>& bars, const std::string& caption = "");
+// The common case: one colour bar after the last panel.
 Image framed_figure(const std::vector<Image>& panels, const std::vector<std::string>& titles, const SliceAxes& axes,
                     float value_lo, float value_hi, const std::string& value_label);
 

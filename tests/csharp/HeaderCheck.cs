@@ -221,6 +221,15 @@ static class HeaderCheck
         }
         foreach (string problem in problems) Console.WriteLine("  header: " + problem);
         Tests.Check(problems.Count == 0, "every DllImport matches capi/tetprobe.h (" + problems.Count + " mismatches)");
+        // And the other way: every function of the header is declared (the binding is complete).
+        var declared = new HashSet<string>(imports.Select(m =>
+        {
+            var import = (DllImportAttribute)m.GetCustomAttributes(typeof(DllImportAttribute), false).FirstOrDefault();
+            return import != null && !string.IsNullOrEmpty(import.EntryPoint) ? import.EntryPoint : m.Name;
+        }));
+        var missing = functions.Keys.Where(f => !declared.Contains(f)).OrderBy(f => f).ToList();
+        Tests.Check(missing.Count == 0, "every function of capi/tetprobe.h has a DllImport" +
+                    (missing.Count > 0 ? " (missing: " + string.Join(", ", missing) + ")" : " (" + functions.Count + ")"));
         Tests.Check(CheckedStructs.Count >= 8, "struct layouts checked: " + string.Join(", ", CheckedStructs.OrderBy(s => s)));
 
         // Constants and enums, by name without underscores: NativeMethods.BuildCompact = TP_BUILD_COMPACT, etc.

@@ -205,14 +205,23 @@ PROTOTYPES = (
 _LIBRARY_NAME = {"darwin": "libtetprobe.dylib", "win32": "tetprobe.dll"}.get(sys.platform, "libtetprobe.so")
 
 
+def _explicit_library():
+    """$TETPROBE_LIBRARY as a library path: the file it names, or the library inside the folder it names."""
+    explicit = os.environ.get("TETPROBE_LIBRARY")
+    if explicit and os.path.isdir(explicit):
+        return os.path.join(explicit, _LIBRARY_NAME)
+    return explicit
+
+
 def candidate_paths():
-    """Where the library is looked for, in order: $TETPROBE_LIBRARY, next to the package, and (only when
-    the package sits in the source tree) the tree's build/ directory; the system's search path comes last."""
+    """Where the library is looked for, in order: $TETPROBE_LIBRARY (a library file, or a folder holding
+    it), next to the package, and (only when the package sits in the source tree) the tree's build/
+    directory; the system's search path comes last."""
     package_dir = os.path.dirname(os.path.abspath(__file__))
     repo_root = os.path.normpath(os.path.join(package_dir, "..", "..", ".."))
     paths = []
-    if os.environ.get("TETPROBE_LIBRARY"):
-        paths.append(os.environ["TETPROBE_LIBRARY"])
+    if _explicit_library():
+        paths.append(_explicit_library())
     paths.append(os.path.join(package_dir, _LIBRARY_NAME))
     # An installed package must not pick up whatever build/ happens to lie two levels above it.
     if os.path.exists(os.path.join(repo_root, "capi", "tetprobe.h")):
@@ -231,7 +240,7 @@ def check_version(library_version, package_version=PACKAGE_VERSION, path=None):
 
 
 def _load():
-    explicit = os.environ.get("TETPROBE_LIBRARY")
+    explicit = _explicit_library()
     tried = []
     for path in candidate_paths():
         if path != explicit and not os.path.exists(path):
@@ -241,7 +250,7 @@ def _load():
             return ctypes.CDLL(path), path
         except OSError as error:
             if path == explicit:
-                raise ImportError("TETPROBE_LIBRARY=%s cannot be loaded: %s" % (path, error))
+                raise ImportError("TETPROBE_LIBRARY=%s cannot be loaded: %s" % (os.environ["TETPROBE_LIBRARY"], error))
             tried.append(path)
     system = ctypes.util.find_library("tetprobe")
     if system:
