@@ -154,7 +154,7 @@ public:
         ai_ = ai;
 
         set_frame();
-        add_node(ai->mRootNode, Affine(), true);
+        add_node(ai->mRootNode, Affine());
         if (meshes_added_ == 0)
             fail_at(request_.label, skipped_primitives_ ? "holds no triangle mesh (only points or lines)" : "holds no triangle mesh");
         add_lights();
@@ -191,12 +191,11 @@ private:
         }
     }
 
-    void add_node(const aiNode* node, const Affine& parent, bool root) {
+    void add_node(const aiNode* node, const Affine& parent) {
         const Affine local = parent.then(Affine::from(node->mTransformation));
         const Affine world = base_.then(local);
         for (unsigned i = 0; i < node->mNumMeshes; ++i) add_mesh(node, ai_->mMeshes[node->mMeshes[i]], world);
-        for (unsigned c = 0; c < node->mNumChildren; ++c) add_node(node->mChildren[c], local, false);
-        (void)root;
+        for (unsigned c = 0; c < node->mNumChildren; ++c) add_node(node->mChildren[c], local);
     }
 
     void add_mesh(const aiNode* node, const aiMesh* mesh, const Affine& world) {
@@ -289,7 +288,7 @@ private:
                 case aiLightSource_SPOT: d.type = LightType::spot; break;
                 case aiLightSource_AREA: note("light '" + name + "' is an area light: left out (only directional, point and spot lights are baked)"); continue;
                 case aiLightSource_AMBIENT: note("light '" + name + "' is an ambient light: left out (give the JSON scene a sky instead)"); continue;
-                default: note("light '" + name + "' is of an unknown kind: left out"); continue;
+                default: note("light '" + name + "' is of a kind Assimp cannot represent (an area or volume light): left out"); continue;
             }
             const aiNode* node = ai_->mRootNode->FindNode(light.mName);
             if (!node) {

@@ -19,6 +19,10 @@ public:
         if (!collecting || !message) return;
         std::string text(message);
         while (!text.empty() && (text.back() == '\n' || text.back() == '\r')) text.pop_back();
+        // The logger prefixes "Warn,  T0: " or "Error, T0: " (severity and thread): the note says it is Assimp's.
+        const size_t thread = text.find(" T");
+        const size_t colon = text.find(": ");
+        if (thread != std::string::npos && colon != std::string::npos && thread < colon && colon < 16) text.erase(0, colon + 2);
         if (!text.empty() && std::find(collecting->begin(), collecting->end(), text) == collecting->end())
             collecting->push_back(text);
     }

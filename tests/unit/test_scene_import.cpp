@@ -667,6 +667,32 @@ TEST_CASE("FBX: an ASCII file loads with its triangles, unit and up axis", "[sce
     CHECK(as_given.up() == UpAxis::neg_x);
 }
 
+TEST_CASE("FBX: a point light as Assimp reports it; an area light is left out and noted", "[scene][import]") {
+    TempDir dir;
+    std::string text = fbx_quad(100, 1);
+    const std::string objects = "Objects:  {\n";
+    text.insert(text.find(objects) + objects.size(),
+                "\tNodeAttribute: 3000, \"NodeAttribute::Panel\", \"Light\" {\n\t\tProperties70:  {\n"
+                "\t\t\tP: \"LightType\", \"enum\", \"\", \"\",3\n\t\t}\n\t\tTypeFlags: \"Light\"\n\t}\n"
+                "\tModel: 4000, \"Model::Panel\", \"Light\" {\n\t\tVersion: 232\n\t}\n"
+                "\tNodeAttribute: 5000, \"NodeAttribute::Bulb\", \"Light\" {\n\t\tProperties70:  {\n"
+                "\t\t\tP: \"LightType\", \"enum\", \"\", \"\",0\n\t\t\tP: \"Color\", \"Color\", \"\", \"A\",1,0.5,0.25\n"
+                "\t\t\tP: \"Intensity\", \"Number\", \"\", \"A\",200\n\t\t}\n\t\tTypeFlags: \"Light\"\n\t}\n"
+                "\tModel: 6000, \"Model::Bulb\", \"Light\" {\n\t\tVersion: 232\n\t\tProperties70:  {\n"
+                "\t\t\tP: \"Lcl Translation\", \"Lcl Translation\", \"\", \"A\",0.5,1,0.5\n\t\t}\n\t}\n");
+    const std::string connections = "Connections:  {\n";
+    text.insert(text.find(connections) + connections.size(),
+                "\tC: \"OO\",4000,0\n\tC: \"OO\",3000,4000\n\tC: \"OO\",6000,0\n\tC: \"OO\",5000,6000\n");
+    const Scene scene = load_scene_file(dir.write("lights.fbx", text));
+    REQUIRE(scene.lights().size() == 1);
+    const Light& bulb = scene.lights()[0];
+    CHECK(bulb.type == LightType::point);
+    CHECK(bulb.position == std::array<double, 3>{{0.5, 1, 0.5}});
+    CHECK(bulb.color == std::array<float, 3>{{2, 1, 0.5f}});  // FBX's colour x intensity / 100
+    CHECK(noted(scene, "light 'Panel' is of a kind Assimp cannot represent"));
+    CHECK(noted(scene, "Assimp: "));
+}
+
 TEST_CASE("import notes: cameras, animations, textures and transparency are reported, not dropped silently", "[scene][import]") {
     TempDir dir;
     std::string buffer;
