@@ -21,6 +21,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <thread>
 #include <unistd.h>
 
 using namespace tetprobe;
@@ -777,6 +778,26 @@ TEST_CASE("bad scene files: a clear Status::scene naming the file, and Assimp pr
     });
     CHECK(printed.empty());
     if (!printed.empty()) WARN("printed: " << printed);
+}
+
+TEST_CASE("scene files: loads on several threads at once each get their own scene and notes", "[scene][import]") {
+    TempDir dir;
+    std::string buffer;
+    const std::string gltf = dir.write("scene.gltf", gltf_text(gltf_scene(&buffer), buffer));
+    const std::string bare = dir.write("bare.obj", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n");
+    const Scene gltf_alone = load_scene_file(gltf), bare_alone = load_scene_file(bare);
+    std::vector<Scene> loaded(8);
+    std::vector<std::thread> threads;
+    for (size_t t = 0; t < loaded.size(); ++t)
+        threads.emplace_back([&, t] { loaded[t] = load_scene_file(t % 2 ? bare : gltf); });
+    for (std::thread& thread : threads) thread.join();
+    for (size_t t = 0; t < loaded.size(); ++t) {
+        const Scene& alone = t % 2 ? bare_alone : gltf_alone;
+        check_same_meshes(loaded[t], alone);
+        CHECK(loaded[t].notes() == alone.notes());
+    }
+    CHECK(gltf_alone.notes().empty());
+    CHECK(bare_alone.notes().size() == 1);
 }
 
 TEST_CASE("placement: walkable columns stand along the scene's up", "[scene][import][placement]") {
