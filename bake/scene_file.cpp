@@ -1,5 +1,7 @@
 #include "bake/scene_file.h"
 
+#include "bake/quake3_bsp.h"
+#include "bake/quake3_scene.h"
 #include "bake/scene_import.h"
 #include "core/error.h"
 
@@ -31,8 +33,21 @@ struct SceneFormat {
     SceneImporter import;
 };
 
+// A Quake 3 level is read in y-up metres (bake/quake3_bsp.h): it is placed as it is.
+void import_quake3_level(Scene& scene, const SceneImport& import) {
+    const bool y_up = (import.file_up == UpAxis::file || import.file_up == UpAxis::pos_y) &&
+                      (import.scene_up == UpAxis::file || import.scene_up == UpAxis::pos_y);
+    if (!(import.scale == 0 || import.scale == 1) || !y_up)
+        throw Error(Status::invalid_argument, import.label + ": a Quake 3 level is read in y-up metres; it takes no other scale or up");
+    add_quake3_level(scene, read_quake3_bsp(import.path));
+    if (import.scene_up == UpAxis::file) scene.set_up(UpAxis::pos_y);
+}
+
 // Magic bytes first (they cannot lie), then extensions. A new format is one more row.
 const SceneFormat kFormats[] = {
+    {"Quake 3 level",
+     [](const FileStart& f) { return looks_like_quake3_bsp(reinterpret_cast<const uint8_t*>(f.bytes.data()), f.bytes.size()); },
+     import_quake3_level},
     {"binary glTF", [](const FileStart& f) { return f.starts_with("glTF"); }, import_assimp_file},
     {"FBX", [](const FileStart& f) { return f.starts_with("Kaydara FBX Binary"); }, import_assimp_file},
     {"binary glTF", [](const FileStart& f) { return f.extension == ".glb"; }, import_assimp_file},
@@ -68,7 +83,7 @@ SceneImporter importer_for(const std::string& path, std::string* format) {
             return f.import;
         }
     throw Error(Status::scene, path + ": not a scene file this library reads (by its content or its extension '" +
-                                   start.extension + "'): glTF 2.0 (.gltf, .glb), FBX (.fbx), OBJ (.obj) or a JSON scene (.json)");
+                                   start.extension + "'): glTF 2.0 (.gltf, .glb), FBX (.fbx), OBJ (.obj), a Quake 3 level (.bsp) or a JSON scene (.json)");
 }
 
 Scene load_scene_file(const std::string& path, const SceneLoadOptions& options) {

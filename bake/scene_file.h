@@ -1,7 +1,8 @@
 // Scene files: glTF 2.0 (.gltf, .glb), FBX and OBJ (with its .mtl) read through Assimp, and the JSON
 // scene (docs/scene-format.md) for what those cannot say: a sky, light modes, probes, and files of the
-// other formats placed with their own units and up. The format is chosen by the file's magic bytes,
-// then by its extension (bake/scene_import.h lists the importers).
+// other formats placed with their own units and up; also Quake 3 levels (bake/quake3_scene.h). The
+// format is chosen by the file's magic bytes, then by its extension (bake/scene_import.h lists the
+// importers).
 #pragma once
 
 #include "bake/scene.h"

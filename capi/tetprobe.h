@@ -444,7 +444,8 @@ TP_API tp_status tp_scene_load_options_init(tp_scene_load_options* options);
 
 /** Loads a scene file, told by its magic bytes, then its extension: glTF 2.0 (.gltf, .glb; meshes,
     KHR_lights_punctual lights, emissive materials), FBX (.fbx), OBJ (.obj with its .mtl: albedo from Kd,
-    emission from Ke), all read through Assimp with node transforms applied, or a JSON scene (.json,
+    emission from Ke), all read through Assimp with node transforms applied, a Quake 3 level (.bsp, IBSP
+    version 46, read in y-up metres; conventions in the README), or a JSON scene (.json,
     docs/scene-format.md: a sky, light modes, probes, and files of the other formats). Units (glTF's
     candela and lux taken one to one as radiant intensity and irradiance) are in that document. options may
     be NULL (defaults). An unreadable file gives TP_ERROR_IO; a malformed or truncated one, an unknown light
