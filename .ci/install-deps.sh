@@ -5,7 +5,7 @@ set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config
   libtet1.5-dev libeigen3-dev libembree-dev catch2
-  nlohmann-json3-dev libtinyobjloader-dev libstb-dev
+  nlohmann-json3-dev libassimp-dev libstb-dev
   python3 python3-numpy python3-scipy python3-matplotlib python3-pytest
   python3-pip python3-setuptools python3-wheel python3-venv
   mono-mcs mono-runtime

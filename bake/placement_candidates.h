@@ -1,6 +1,6 @@
 // Candidate probe positions for automatic placement, kept where a probe is useful and safe. The whole
 // mode takes a grid over the scene's bounds; the walkable mode takes columns of that grid, finds
-// every upward-facing surface along each (up is +y; a floor faces up within 45 degrees, a one-sided
+// every upward-facing surface along each (up is the scene's up, Scene::up; a floor faces up within 45 degrees, a one-sided
 // surface seen from behind is none), and stands points above each floor across the height band
 // [walk_min_height, walk_max_height], a spacing apart, cut off `margin` below the next surface above
 // the floor and at the scene's bounds. Kept points are outside geometry

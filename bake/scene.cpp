@@ -207,6 +207,30 @@ void Scene::set_probes(const float* positions, size_t count, size_t stride_bytes
     probes_ = std::move(probes);
 }
 
+void Scene::set_up(UpAxis up) {
+    if (!is_axis(up))
+        throw Error(Status::invalid_argument, "up must be one of the six axis directions (TP_UP_POS_X ... TP_UP_NEG_Z), got " +
+                                                  std::to_string(uint32_t(up)));
+    up_ = up;
+}
+
+Scene Scene::meshes_turned(const AxisTurn& turn) const {
+    Scene turned;
+    turned.meshes_ = meshes_;
+    for (Mesh& mesh : turned.meshes_) {
+        for (size_t v = 0; v < mesh.vertices.size(); v += 3) turn.apply(&mesh.vertices[v], &mesh.vertices[v]);
+        float lo[3], hi[3];
+        turn.apply(mesh.bounds_min.data(), lo);
+        turn.apply(mesh.bounds_max.data(), hi);
+        for (int a = 0; a < 3; ++a) {
+            mesh.bounds_min[a] = std::min(lo[a], hi[a]);
+            mesh.bounds_max[a] = std::max(lo[a], hi[a]);
+        }
+    }
+    turned.up_ = turn.apply(up_);
+    return turned;
+}
+
 uint32_t Scene::dropped_triangles() const {
     uint32_t dropped = 0;
     for (const Mesh& m : meshes_) dropped += m.dropped_triangles;

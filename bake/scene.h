@@ -3,6 +3,7 @@
 // degenerate triangle; messages name what is wrong and where (mesh, triangle, vertex, light).
 #pragma once
 
+#include "bake/up_axis.h"
 #include "core/option_defaults.h"
 
 #include <array>
@@ -102,22 +103,34 @@ public:
     void set_sky_color(const float rgb[3]);
     void set_sky_sh(const float sh[27]);
     void set_probes(const float* positions, size_t count, size_t stride_bytes = 0);
+    // Which way is up (+y unless set): placement's walkable mode stands probes along it. Throws
+    // Error(Status::invalid_argument) for anything but one of the six axis directions.
+    void set_up(UpAxis up);
+    // What an import from a file left out or converted (a camera, a texture, a unit), one line each.
+    void add_note(const std::string& note) { notes_.push_back(note); }
 
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }
     const Sky& sky() const { return sky_; }
     const std::vector<float>& probes() const { return probes_; }
     size_t probe_count() const { return probes_.size() / 3; }
+    UpAxis up() const { return up_; }
+    const std::vector<std::string>& notes() const { return notes_; }
     uint32_t dropped_triangles() const;
     uint32_t mixed_light_count() const;
     // True when there is nothing that emits light or occludes it: no mesh, no light, no sky.
     bool empty() const { return meshes_.empty() && lights_.empty() && sky_.kind == SkyKind::none; }
+    // The same meshes turned exactly by `turn` (their bounds too), and up turned with them; no lights,
+    // sky, probes or notes: what geometric tests (placement's floors) read in another frame.
+    Scene meshes_turned(const AxisTurn& turn) const;
 
 private:
     std::vector<Mesh> meshes_;
     std::vector<Light> lights_;
     Sky sky_;
     std::vector<float> probes_;
+    UpAxis up_ = UpAxis::pos_y;
+    std::vector<std::string> notes_;
 };
 
 // Checks a material, throwing Error(Status::scene) naming `where` when it is invalid.

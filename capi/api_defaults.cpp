@@ -53,6 +53,14 @@ TP_API tp_status tp_light_init(tp_light* light) {
     TP_API_END
 }
 
+TP_API tp_status tp_scene_load_options_init(tp_scene_load_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(options);
+    *options = tetprobe::default_scene_load_options();
+    return TP_OK;
+    TP_API_END
+}
+
 TP_API tp_status tp_sh_eval_options_init(tp_sh_eval_options* options) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(options);

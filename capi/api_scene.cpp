@@ -65,12 +65,49 @@ TP_API tp_status tp_scene_release(tp_scene* scene) {
 }
 
 TP_API tp_status tp_scene_load_file(const char* path, tp_scene** out_scene) {
+    return tp_scene_load_file_ex(path, nullptr, out_scene);
+}
+
+TP_API tp_status tp_scene_load_file_ex(const char* path, const tp_scene_load_options* options, tp_scene** out_scene) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(path);
     TP_REQUIRE_NOT_NULL(out_scene);
     *out_scene = nullptr;
-    tetprobe::Scene loaded = tetprobe::load_scene_file(path);
+    tetprobe::Scene loaded = tetprobe::load_scene_file(path, tetprobe::scene_load_options_from_c(options));
     *out_scene = new tp_scene{std::move(loaded)};
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_notes(const tp_scene* scene, char* text, size_t text_capacity, size_t* out_size) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    if (text && text_capacity > 0) text[0] = '\0';
+    std::string notes;
+    for (const std::string& note : scene->scene.notes()) notes += note + "\n";
+    if (out_size) *out_size = notes.size() + 1;
+    if (!text) return TP_OK;
+    if (notes.size() + 1 > text_capacity)
+        return fail(TP_ERROR_BUFFER_TOO_SMALL, "the notes need " + std::to_string(notes.size() + 1) +
+                                                   " bytes, text_capacity is " + std::to_string(text_capacity));
+    std::memcpy(text, notes.c_str(), notes.size() + 1);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_up(const tp_scene* scene, uint32_t* out_up) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(out_up);
+    *out_up = uint32_t(scene->scene.up());
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_set_up(tp_scene* scene, uint32_t up) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    scene->scene.set_up(static_cast<tetprobe::UpAxis>(up));
     return TP_OK;
     TP_API_END
 }

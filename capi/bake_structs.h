@@ -8,6 +8,7 @@
 
 #include "bake/progress.h"
 #include "bake/scene.h"
+#include "bake/scene_file.h"
 #include "core/error.h"
 
 #include <algorithm>
@@ -23,6 +24,12 @@ static_assert(TP_LIGHT_DIRECTIONAL == uint32_t(LightType::directional) && TP_LIG
 static_assert(TP_LIGHT_MODE_BAKED == uint32_t(LightMode::baked) && TP_LIGHT_MODE_REALTIME == uint32_t(LightMode::realtime) &&
                   TP_LIGHT_MODE_MIXED == uint32_t(LightMode::mixed),
               "TP_LIGHT_MODE_* must equal LightMode");
+
+static_assert(TP_UP_FILE == uint32_t(UpAxis::file) && TP_UP_POS_X == uint32_t(UpAxis::pos_x) &&
+                  TP_UP_NEG_X == uint32_t(UpAxis::neg_x) && TP_UP_POS_Y == uint32_t(UpAxis::pos_y) &&
+                  TP_UP_NEG_Y == uint32_t(UpAxis::neg_y) && TP_UP_POS_Z == uint32_t(UpAxis::pos_z) &&
+                  TP_UP_NEG_Z == uint32_t(UpAxis::neg_z),
+              "TP_UP_* must equal UpAxis");
 
 // tp_progress_fn has ProgressCallback's signature: the caller's callback is called as it is.
 inline Progress progress_from_c(tp_progress_fn callback, void* user) {
@@ -60,6 +67,17 @@ inline LightDescription light_from_c(const tp_light& light, const std::string& w
     d.inner_angle = light.inner_angle;
     d.outer_angle = light.outer_angle;
     return d;
+}
+
+// C scene load options (NULL = defaults; struct_size must be set), for load_scene_file to check.
+inline SceneLoadOptions scene_load_options_from_c(const tp_scene_load_options* options) {
+    SceneLoadOptions o;
+    if (!options) return o;
+    if (options->struct_size < sizeof(tp_scene_load_options))
+        throw Error(Status::invalid_argument, "options->struct_size is not set (call tp_scene_load_options_init)");
+    o.up = static_cast<UpAxis>(options->up);
+    o.scale = double(options->scale);
+    return o;
 }
 
 }  // namespace tetprobe

@@ -45,6 +45,15 @@ inline tp_store_load_options default_store_load_options() {
     return options;
 }
 
+// The file's own unit and up.
+inline tp_scene_load_options default_scene_load_options() {
+    tp_scene_load_options options{};
+    options.struct_size = sizeof(tp_scene_load_options);
+    options.up = TP_UP_FILE;
+    options.scale = 0.0f;
+    return options;
+}
+
 // Grey, one-sided, not emissive.
 inline tp_material default_material() {
     tp_material material{};

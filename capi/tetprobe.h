@@ -452,9 +452,53 @@ TP_API tp_status tp_light_init(tp_light* light);
 TP_API tp_status tp_scene_create(tp_scene** out_scene);
 TP_API tp_status tp_scene_release(tp_scene* scene);
 
-/** Loads a JSON scene file (meshes inline or from OBJ files relative to it, lights, sky, probes), or a
-    Quake 3 level (a .bsp file, IBSP version 46; conventions in the README). */
+/** Loads a scene file with the default options (tp_scene_load_file_ex). */
 TP_API tp_status tp_scene_load_file(const char* path, tp_scene** out_scene);
+
+/** Which way is up: tp_scene_load_options.up, tp_scene_up, tp_scene_set_up. */
+#define TP_UP_FILE 0u  /* load options only: what the file says */
+#define TP_UP_POS_X 1u
+#define TP_UP_NEG_X 2u
+#define TP_UP_POS_Y 3u
+#define TP_UP_NEG_Y 4u
+#define TP_UP_POS_Z 5u
+#define TP_UP_NEG_Z 6u
+
+typedef struct tp_scene_load_options {
+    uint32_t struct_size;
+    /** Which way is up in the file (TP_UP_*; default TP_UP_FILE: glTF and OBJ +y, FBX its UpAxis, a JSON
+        scene its "up", +y by default). Coordinates are not turned: the scene records it (tp_scene_up). */
+    uint32_t up;
+    /** World units per file unit (default 0: the file's own unit in metres, glTF and OBJ 1, FBX its
+        UnitScaleFactor / 100; a JSON scene is in world units, 0 or 1). Positions and ranges scale; point
+        and spot intensities scale by the square of world units per metre, so irradiance stays the same. */
+    float scale;
+} tp_scene_load_options;
+
+/** Fills defaults and struct_size. */
+TP_API tp_status tp_scene_load_options_init(tp_scene_load_options* options);
+
+/** Loads a scene file, told by its magic bytes, then its extension: glTF 2.0 (.gltf, .glb; meshes,
+    KHR_lights_punctual lights, emissive materials), FBX (.fbx), OBJ (.obj with its .mtl: albedo from Kd,
+    emission from Ke), all read through Assimp with node transforms applied, a Quake 3 level (.bsp, IBSP
+    version 46, read in y-up metres; conventions in the README), or a JSON scene (.json,
+    docs/scene-format.md: a sky, light modes, probes, and files of the other formats). Units (glTF's
+    candela and lux taken one to one as radiant intensity and irradiance) are in that document. options may
+    be NULL (defaults). An unreadable file gives TP_ERROR_IO; a malformed or truncated one, an unknown light
+    type, a referenced file that cannot be read or no mesh TP_ERROR_SCENE naming the file and what is wrong.
+    What a bake cannot use (cameras, textures, animations, area lights) is left out and noted
+    (tp_scene_notes). */
+TP_API tp_status tp_scene_load_file_ex(const char* path, const tp_scene_load_options* options, tp_scene** out_scene);
+
+/** What loading the scene left out or converted, one note a line ("" for none). text (may be NULL
+    to ask for the size) receives it if text_capacity bytes hold it and its terminating zero;
+    *out_size (may be NULL) receives the bytes needed, also with TP_ERROR_BUFFER_TOO_SMALL. */
+TP_API tp_status tp_scene_notes(const tp_scene* scene, char* text, size_t text_capacity, size_t* out_size);
+
+/** The scene's up (TP_UP_POS_X ... TP_UP_NEG_Z; +y unless loaded or set otherwise). Placement's walkable
+    mode stands probes along it. */
+TP_API tp_status tp_scene_up(const tp_scene* scene, uint32_t* out_up);
+TP_API tp_status tp_scene_set_up(tp_scene* scene, uint32_t up);
 
 /** Adds a triangle mesh. vertices: 3 floats each; indices: 3 per triangle. materials: material_count
     materials; triangle_materials: one index into materials per triangle, or NULL (all use the first). */
@@ -545,8 +589,8 @@ TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions
  * --------------------------------------------------------------------------------------------- */
 
 #define TP_PLACEMENT_WHOLE 0u    /* candidates fill the scene's bounds */
-#define TP_PLACEMENT_WALKABLE 1u /* candidates stand across a height band above every upward-facing surface (+y up),
-                                    in columns of the grid */
+#define TP_PLACEMENT_WALKABLE 1u /* candidates stand across a height band above every upward-facing surface (up is
+                                    the scene's, tp_scene_up), in columns of the grid */
 
 typedef struct tp_placement_options {
     uint32_t struct_size;

@@ -84,6 +84,15 @@ namespace TetProbe
         public float t;
     }
 
+    /// <summary>tp_scene_load_options.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativeSceneLoadOptions
+    {
+        public uint struct_size;
+        public uint up;
+        public float scale;
+    }
+
     /// <summary>tp_bake_options.</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct NativeBakeOptions
@@ -357,6 +366,21 @@ namespace TetProbe
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_scene_load_file([In] byte[] path, out SceneHandle scene);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_load_options_init(ref NativeSceneLoadOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_load_file_ex([In] byte[] path, ref NativeSceneLoadOptions options, out SceneHandle scene);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_notes(SceneHandle scene, [Out] byte[] text, UIntPtr text_capacity, out UIntPtr size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_up(SceneHandle scene, out uint up);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_set_up(SceneHandle scene, uint up);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_scene_add_mesh(SceneHandle scene, [In] Vector3[] vertices, UIntPtr vertex_count,

@@ -164,6 +164,7 @@ int main(int argc, char** argv) {
     test_small_sets();
     test_scene_and_bake();
     test_scene_files();
+    test_scene_import();
     test_occlusion_and_leak_control();
     test_occlusion_bake_and_blend();
     test_leak_control_queries();

@@ -91,6 +91,7 @@ void test_batch_options(void);
 void test_outside_batch(void);
 void test_scene_and_bake(void);
 void test_scene_files(void);
+void test_scene_import(void);
 /* occlusion_leak.c */
 void test_occlusion_and_leak_control(void);
 /* placement.c */

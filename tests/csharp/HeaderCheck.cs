@@ -252,6 +252,7 @@ static class HeaderCheck
         foreach (LightMode mode in Enum.GetValues(typeof(LightMode))) expect("TP_LIGHT_MODE_" + mode, (long)mode);
         foreach (ShOrder order in Enum.GetValues(typeof(ShOrder))) expect("TP_SH_ORDER_" + order, (long)order);
         foreach (ShWindow window in Enum.GetValues(typeof(ShWindow))) expect("TP_SH_WINDOW_" + window, (long)window);
+        foreach (UpAxis up in Enum.GetValues(typeof(UpAxis))) expect("TP_UP_" + up, (long)up);
         foreach (string problem in constantProblems) Console.WriteLine("  header: " + problem);
         Tests.Check(constantProblems.Count == 0, "constants and enums match the header's values");
 

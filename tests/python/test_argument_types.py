@@ -47,7 +47,7 @@ CALLS = {
                                                                      chain_hints=False, occlusion=False)),
     "Store.weights": (lambda: store().weights, lambda: dict(points=POINTS, hints=None, threads=1, chain_hints=False)),
     "Store.locate": (lambda: store().locate, lambda: dict(point=POINTS[0], hint=-1)),
-    "Scene.load": (lambda: Scene.load, lambda: dict(path=os.path.join(SCENES, "cornell_box.json"))),
+    "Scene.load": (lambda: Scene.load, lambda: dict(path=os.path.join(SCENES, "cornell_box.json"), scale=1.0, up="+y")),
     "Scene.add_mesh": (lambda: Scene().add_mesh, lambda: dict(vertices=QUAD, indices=[[0, 1, 2]], albedo=(1, 1, 1),
                                                                emission=(0, 0, 0), two_sided=True)),
     "Scene.add_directional_light": (lambda: Scene().add_directional_light,
@@ -97,10 +97,10 @@ CALLS = {
 
 # Public names without parameters to get wrong, or that are not called with arguments.
 NO_ARGUMENTS = {"Store", "Scene", "Error", "Status", "Placement", "Store.to_bytes", "Store.info", "Store.close",
-                "Scene.close", "Scene.probes", "library_version", "library_path", "tool.find_tool",
+                "Scene.close", "Scene.probes", "Scene.notes", "Scene.up", "library_version", "library_path", "tool.find_tool",
                 "tool.tool_candidates"}
 # Parameters where a string is a valid value (paths, names) or whose wrong strings are values, not types.
-STRINGS_ALLOWED = {"path", "source", "scene", "mode", "order", "window"}
+STRINGS_ALLOWED = {"path", "source", "scene", "mode", "order", "window", "up"}
 
 
 class Opaque:
@@ -140,6 +140,8 @@ def test_scene_properties_and_paths_for_scenes(tmp_path):
     scene = Scene()
     with pytest.raises(TypeError, match="positions"):
         scene.probes = Opaque()
+    with pytest.raises(TypeError, match="up"):
+        scene.up = Opaque()
     # Every `scene` parameter takes a scene file's path: the file is loaded for the call.
     path = os.path.join(SCENES, "two_rooms.json")
     probes = Scene.load(path).probes

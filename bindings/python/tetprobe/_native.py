@@ -41,6 +41,9 @@ PLACEMENT_WHOLE = 0
 PLACEMENT_WALKABLE = 1
 INSIDE_DROP = 0
 INSIDE_PUSH = 1
+UP_FILE = 0
+#: TP_UP_POS_X ... TP_UP_NEG_Z by name.
+UP_AXES = {"+x": 1, "-x": 2, "+y": 3, "-y": 4, "+z": 5, "-z": 6}
 
 ProgressFn = CFUNCTYPE(c_int, c_void_p, c_float, c_char_p)
 
@@ -88,6 +91,10 @@ class Light(Structure):
                 ("color", c_float * 3), ("intensity", c_float), ("position", c_float * 3),
                 ("direction", c_float * 3), ("range", c_float), ("inner_angle", c_float),
                 ("outer_angle", c_float)]
+
+
+class SceneLoadOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("up", c_uint32), ("scale", c_float)]
 
 
 class BakeOptions(Structure):
@@ -174,6 +181,11 @@ PROTOTYPES = (
     ("tp_scene_create", _status, (POINTER(_handle),)),
     ("tp_scene_release", _status, (_handle,)),
     ("tp_scene_load_file", _status, (c_char_p, POINTER(_handle))),
+    ("tp_scene_load_options_init", _status, (POINTER(SceneLoadOptions),)),
+    ("tp_scene_load_file_ex", _status, (c_char_p, POINTER(SceneLoadOptions), POINTER(_handle))),
+    ("tp_scene_notes", _status, (_handle, POINTER(c_char), c_size_t, POINTER(c_size_t))),
+    ("tp_scene_up", _status, (_handle, POINTER(c_uint32))),
+    ("tp_scene_set_up", _status, (_handle, c_uint32)),
     ("tp_scene_add_mesh", _status, (_handle, _buffer, c_size_t, _buffer, c_size_t, POINTER(Material), c_size_t,
                                     _buffer, POINTER(c_uint32))),
     ("tp_scene_add_light", _status, (_handle, POINTER(Light), POINTER(c_uint32))),

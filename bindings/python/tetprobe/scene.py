@@ -19,7 +19,8 @@ _MODES = {"baked": _native.LIGHT_MODE_BAKED, "realtime": _native.LIGHT_MODE_REAL
 class Scene(NativeHandle):
     """Triangle meshes, lights, a sky and optionally probe positions, for the bake (bake-time library only:
     the run-time library raises Error(UNSUPPORTED)). Positions are float32 world units; colours are
-    linear RGB. Scene() is empty; Scene.load reads a JSON scene file. close() or `with` releases it."""
+    linear RGB. Scene() is empty; Scene.load reads a glTF, FBX, OBJ or JSON scene file. close() or `with`
+    releases it."""
 
     _release = staticmethod(lib.tp_scene_release)
     _noun = "scene"
@@ -32,12 +33,55 @@ class Scene(NativeHandle):
         self._adopt(_handle)
 
     @classmethod
-    def load(cls, path):
-        """Reads the JSON scene file at path (meshes inline or from OBJ files relative to it, lights, sky,
-        probes); an invalid file raises Error(SCENE) naming what and where."""
+    def load(cls, path, scale=None, up=None):
+        """Reads the scene file at path: glTF 2.0 (.gltf, .glb), FBX, OBJ (with its .mtl) or a JSON scene
+        (docs/scene-format.md), told by its first bytes, then its extension.
+
+        scale: world units per unit of the file (a number > 0; None = the file's own unit in metres: glTF
+        and OBJ 1, FBX its UnitScaleFactor / 100; a JSON scene is in world units); positions and ranges
+        scale, point and spot intensities by the square of world units per metre. up: which way is up in
+        the file, "+x", "-x", "+y", "-y", "+z" or "-z" (None = what the file says: glTF and OBJ "+y", FBX
+        its UpAxis, a JSON scene its "up"); coordinates are kept and the scene records it (Scene.up).
+        What the file holds that a bake cannot use (cameras, textures, animations, area lights) is left
+        out and listed in Scene.notes. An invalid file raises Error(SCENE) naming the file and what is
+        wrong; a missing one Error(IO)."""
+        encoded = _path_argument(path, "path")
         handle = ctypes.c_void_p()
-        check(lib.tp_scene_load_file(_path_argument(path, "path"), ctypes.byref(handle)))
+        if scale is None and up is None:
+            check(lib.tp_scene_load_file(encoded, ctypes.byref(handle)))
+            return cls(handle.value)
+        options = _native.SceneLoadOptions()
+        check(lib.tp_scene_load_options_init(ctypes.byref(options)))
+        if scale is not None:
+            options.scale = number(scale, "scale")
+            if not options.scale > 0 or math.isinf(options.scale):
+                raise ValueError("scale must be a finite number > 0 (got %r)" % (scale,))
+        if up is not None:
+            options.up = choice(up, _native.UP_AXES, "up")
+        check(lib.tp_scene_load_file_ex(encoded, ctypes.byref(options), ctypes.byref(handle)))
         return cls(handle.value)
+
+    @property
+    def notes(self):
+        """What loading the scene left out or converted (cameras, textures, animations, area lights,
+        Assimp's warnings), a list of str, one per note; [] for a scene built in code."""
+        size = ctypes.c_size_t()
+        check(lib.tp_scene_notes(self._live(), None, 0, ctypes.byref(size)))
+        text = ctypes.create_string_buffer(size.value)
+        check(lib.tp_scene_notes(self._live(), text, len(text), None))
+        return text.value.decode("utf-8", "replace").splitlines()
+
+    @property
+    def up(self):
+        """Which way is up in the scene: "+x", "-x", "+y", "-y", "+z" or "-z" ("+y" unless loaded or set
+        otherwise); placement's walkable mode stands probes on floors along it. Assign one to change it."""
+        value = ctypes.c_uint32()
+        check(lib.tp_scene_up(self._live(), ctypes.byref(value)))
+        return {code: name for name, code in _native.UP_AXES.items()}[value.value]
+
+    @up.setter
+    def up(self, axis):
+        check(lib.tp_scene_set_up(self._live(), choice(axis, _native.UP_AXES, "up")))
 
     # ---- content
 
