@@ -12,7 +12,7 @@ namespace tetprobe {
 
 namespace {
 
-// Lowest cosine between an upward-facing floor's normal and +y (45 degrees).
+// Lowest cosine between an upward-facing floor's normal and +y, the up of the frame the rules run in (45 degrees).
 constexpr double kFloorCosine = 0.7071;
 // Floors a walkable column may have (storeys, tables, stairs); more are ignored.
 constexpr size_t kMaxFloorsPerColumn = 64;
@@ -198,7 +198,17 @@ bool clear_of_surfaces(const RayCaster& caster, const float local[3], double mar
     return !caster.nearest_surface(local, float(margin), &nearest) || double(nearest.distance) >= margin;
 }
 
+// Walkable columns stand along the scene's up: the rules below run where up is +y, so a scene with
+// another up is turned there exactly (a signed permutation of its coordinates) and points turned back.
+static bool turned_for_walking(const Scene& scene, const CandidateRules& rules, AxisTurn* back) {
+    if (rules.mode != PlacementMode::walkable || scene.up() == UpAxis::pos_y) return false;
+    *back = turn_between(UpAxis::pos_y, scene.up());
+    return true;
+}
+
 size_t candidate_bound(const Scene& scene, const CandidateRules& rules) {
+    AxisTurn back;
+    if (turned_for_walking(scene, rules, &back)) return candidate_bound(scene.meshes_turned(back.inverse()), rules);
     Grid grids[2];
     double lo[3], hi[3];
     make_grids(scene, rules, &grids[0], &grids[1], lo, hi);
@@ -211,7 +221,14 @@ size_t candidate_bound(const Scene& scene, const CandidateRules& rules) {
 }
 
 Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint32_t threads,
-                           const ProgressRange& progress) {
+                           const Progress& progress) {
+    AxisTurn back;
+    if (turned_for_walking(scene, rules, &back)) {
+        Candidates turned = find_candidates(scene.meshes_turned(back.inverse()), rules, threads, progress);
+        for (std::vector<float>* points : {&turned.positions, &turned.held_out})
+            for (size_t i = 0; i < points->size(); i += 3) back.apply(&(*points)[i], &(*points)[i]);
+        return turned;
+    }
     Grid grids[2];
     double lo[3], hi[3];
     make_grids(scene, rules, &grids[0], &grids[1], lo, hi);

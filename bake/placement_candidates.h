@@ -1,6 +1,6 @@
 // Candidate probe positions for automatic placement, kept where a probe is useful and safe. The whole
 // mode takes a grid over the scene's bounds; the walkable mode takes columns of that grid, finds
-// every upward-facing surface along each (up is +y; a floor faces up within 45 degrees, a one-sided
+// every upward-facing surface along each (up is the scene's up, Scene::up; a floor faces up within 45 degrees, a one-sided
 // surface seen from behind is none), and stands points above each floor across the height band
 // [walk_min_height, walk_max_height], a spacing apart, cut off `margin` below the next surface above
 // the floor and at the scene's bounds. Kept points are outside geometry
@@ -48,7 +48,7 @@ size_t candidate_bound(const Scene& scene, const CandidateRules& rules);
 // The candidates and held-out points. Throws as candidate_bound, Error(Status::scene) when the inside
 // test cannot decide (bake/inside_test.h) and Error(Status::cancelled) from the progress callback.
 Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint32_t threads,
-                           const ProgressRange& progress);
+                           const Progress& progress);
 
 // Whether no surface lies closer than margin to the local point (margin 0: always).
 bool clear_of_surfaces(const RayCaster& caster, const float local[3], double margin);

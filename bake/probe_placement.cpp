@@ -15,12 +15,6 @@ namespace {
 // The part of the caller's progress each stage reports into.
 constexpr double kCandidatesEnd = 0.3, kBakeEnd = 0.6;
 
-// Forwards the lighting bake's own progress into its slice of the placement's.
-int forward_bake_progress(void* user, float fraction, const char*) {
-    const ProgressRange& range = *static_cast<const ProgressRange*>(user);
-    return range.callback(range.user, range.from + (range.to - range.from) * fraction, "bake") != 0;
-}
-
 }  // namespace
 
 size_t placement_bound(const Scene& scene, const PlacementSettings& settings) {
@@ -31,7 +25,7 @@ Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
     if (!(settings.error_bound >= 0) || !std::isfinite(settings.error_bound))
         throw Error(Status::invalid_argument, "error_bound must be zero (none) or positive");
     if (settings.rays == 0) throw Error(Status::invalid_argument, "rays must be at least 1");
-    const ProgressRange progress{settings.progress, settings.progress_user, 0.0f, 1.0f};
+    const Progress& progress = settings.progress;
 
     const Candidates candidates = find_candidates(scene, settings.rules, settings.threads, progress.part(0, kCandidatesEnd));
     const size_t count = candidates.positions.size() / 3;
@@ -64,11 +58,7 @@ Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
     bake.bounces = settings.bounces;
     bake.seed = settings.seed;
     bake.threads = settings.threads;
-    const ProgressRange bake_range = progress.part(kCandidatesEnd, kBakeEnd);
-    if (settings.progress) {
-        bake.progress = forward_bake_progress;
-        bake.progress_user = const_cast<ProgressRange*>(&bake_range);
-    }
+    bake.progress = progress.part(kCandidatesEnd, kBakeEnd);
     const std::vector<float> sh = bake_lighting(scene, candidates.positions, bake);
 
     PruneSettings prune;

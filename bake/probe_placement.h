@@ -5,6 +5,7 @@
 
 #include "bake/placement_candidates.h"
 #include "bake/probe_pruning.h"
+#include "bake/progress.h"
 #include "bake/scene.h"
 #include "core/option_defaults.h"
 
@@ -21,8 +22,7 @@ struct PlacementSettings {
     uint32_t bounces = kDefaultBakeBounces;
     uint64_t seed = 0;
     uint32_t threads = 0;       // 0 = all cores
-    tp_progress_fn progress = nullptr;
-    void* progress_user = nullptr;
+    Progress progress;          // stages "candidates", "bake", "prune", "done"
 };
 
 struct Placement {

@@ -187,7 +187,7 @@ double irradiance_rms(const double coefficients[27]) {
 
 PruneResult prune_probes(const std::vector<float>& positions, const std::vector<float>& sh,
                          const std::vector<float>& held_out, const PruneSettings& settings,
-                         const ProgressRange& progress) {
+                         const Progress& progress) {
     const uint32_t n = uint32_t(positions.size() / 3);
     PruneResult result;
     result.kept.resize(n);

@@ -46,7 +46,7 @@ struct PruneResult {
 // depends only on the input, not on the thread count. Throws Error(Status::cancelled) from progress.
 PruneResult prune_probes(const std::vector<float>& positions, const std::vector<float>& sh,
                          const std::vector<float>& held_out, const PruneSettings& settings,
-                         const ProgressRange& progress);
+                         const Progress& progress);
 
 // The irradiance SH of a probe's radiance SH (the cosine lobe's band factors applied).
 void irradiance_coefficients(const float sh[27], double out[27]);

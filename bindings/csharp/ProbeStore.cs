@@ -4,6 +4,7 @@ using System;
 using System.Threading;
 #if UNITY_5_3_OR_NEWER
 using Vector3 = UnityEngine.Vector3;
+using Vector4 = UnityEngine.Vector4;
 #endif
 
 namespace TetProbe
@@ -33,6 +34,10 @@ namespace TetProbe
         public int HullProbes;
         /// <summary>Bytes of each part of the blob; they add up to Bytes.</summary>
         public StoreSectionBytes SectionBytes;
+        /// <summary>Mixed lights with occlusion probes (0 = none).</summary>
+        public int OcclusionLights;
+        /// <summary>Probe pairs that cannot see each other, kept for leak control (0 = built without a scene).</summary>
+        public int LeakEdges;
     }
 
     /// <summary>Where one query ended and what it blended (tp_location).</summary>
@@ -72,6 +77,12 @@ namespace TetProbe
         /// <summary>Positions in 16 bits per axis over the probes' bounds, quantised before the tessellation (so a query at a
         /// stored probe still weighs it exactly 1); probes that quantise to one point merge.</summary>
         public bool QuantizePositions;
+        /// <summary>Leak control (null = none): probe pairs of a cell that cannot see each other in this scene are
+        /// stored, and queries weigh down the probe behind the wall. Full library only.</summary>
+        public Scene Scene;
+        /// <summary>Occlusion probes (Baker.BakeOcclusion, one per position; null = none): the store then answers
+        /// InterpolateOcclusion with their blended visibility.</summary>
+        public OcclusionProbes Occlusion;
 
         public BuildOptions()
         {
@@ -123,13 +134,27 @@ namespace TetProbe
             if (positions == null) throw new ArgumentNullException("positions");
             if (sh != null && sh.Length != positions.Length)
                 throw new ArgumentException("sh has " + sh.Length + " entries for " + positions.Length + " positions", "sh");
-            return new ProbeStore(NativeProxy.Build(positions, sh, (options ?? new BuildOptions()).ToNative(), progress, cancel));
+            options = options ?? new BuildOptions();
+            OcclusionProbes occlusion = options.Occlusion;
+            if (occlusion != null && occlusion.Probes.Length != positions.Length)
+                throw new ArgumentException("Occlusion has " + occlusion.Probes.Length + " probes for " + positions.Length +
+                                            " positions", "options");
+            return new ProbeStore(NativeProxy.Build(positions, sh, options.ToNative(),
+                options.Scene == null ? null : options.Scene.Live(), occlusion == null ? null : occlusion.Probes,
+                occlusion == null ? 0 : occlusion.MixedLights, progress, cancel));
         }
 
-        /// <summary>Loads and validates a store file.</summary>
+        /// <summary>Loads and validates a store file (a regular file of at most 1 GiB).</summary>
         public static ProbeStore Load(string path)
         {
             return new ProbeStore(NativeProxy.LoadFile(path));
+        }
+
+        /// <summary>Loads and validates a store file; a file larger than maxFileBytes, or one that is not a regular
+        /// file, throws TetProbeException with status IO.</summary>
+        public static ProbeStore Load(string path, ulong maxFileBytes)
+        {
+            return new ProbeStore(NativeProxy.LoadFile(path, maxFileBytes));
         }
 
         /// <summary>Loads and validates a store blob (copied; safe for untrusted bytes).</summary>
@@ -139,7 +164,8 @@ namespace TetProbe
             return new ProbeStore(NativeProxy.Load(data));
         }
 
-        /// <summary>Writes the store to path atomically.</summary>
+        /// <summary>Writes the store to path atomically (a temporary file next to it, then a rename; a symbolic link is
+        /// written through and an existing file keeps its permissions).</summary>
         public void Save(string path)
         {
             NativeProxy.SaveFile(Live(), path);
@@ -168,6 +194,7 @@ namespace TetProbe
                     QuantizedPositions = n.quantized_positions != 0,
                     PositionStep = new Vector3((float)n.position_step_x, (float)n.position_step_y, (float)n.position_step_z),
                     HullProbes = (int)n.hull_probes, SectionBytes = new StoreSectionBytes(n.section_bytes),
+                    OcclusionLights = (int)n.occlusion_lights, LeakEdges = (int)n.leak_edges,
                 };
             }
         }
@@ -200,6 +227,25 @@ namespace TetProbe
         {
             CheckBatch(positions, hints, results == null ? -1 : results.Length, "results", 1, chainHints);
             NativeProxy.InterpolateBatch(Live(), positions, hints, results, NativeProxy.BatchOptions(threads, chainHints));
+        }
+
+        /// <summary>Interpolated SH and occlusion at position (Unity's CalculateInterpolatedLightAndOcclusionProbes):
+        /// occlusion.x..w is the visibility in [0, 1] of mixed lights 0..3 blended from the probes' occlusion (1 for
+        /// channels without a light, and for a store built without occlusion); hint as Interpolate.</summary>
+        public void InterpolateOcclusion(Vector3 position, ref int hint, out SphericalHarmonicsL2 sh, out Vector4 occlusion)
+        {
+            NativeProxy.InterpolateOcclusion(Live(), position, ref hint, out sh, out occlusion);
+        }
+
+        /// <summary>Batch form of InterpolateOcclusion: sh[i] and occlusion[i] at positions[i]; hints, threads and
+        /// chainHints as the batch Interpolate.</summary>
+        public void InterpolateOcclusion(Vector3[] positions, int[] hints, SphericalHarmonicsL2[] sh, Vector4[] occlusion,
+                                         int threads = 1, bool chainHints = false)
+        {
+            CheckBatch(positions, hints, sh == null ? -1 : sh.Length, "sh", 1, chainHints);
+            CheckBatch(positions, hints, occlusion == null ? -1 : occlusion.Length, "occlusion", 1, chainHints);
+            NativeProxy.InterpolateOcclusionBatch(Live(), positions, hints, sh, occlusion,
+                                                  NativeProxy.BatchOptions(threads, chainHints));
         }
 
         /// <summary>Batch form of Weights: probes[4 i .. 4 i + 3] and weights[4 i .. 4 i + 3] for positions[i];

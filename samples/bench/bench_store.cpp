@@ -2,8 +2,9 @@
 // objects on 1 and 2 threads, cold, teleport, outside the hull) next to the blend-only floor, a plain
 // float walk over the same mesh (plain_walk.h) and CGAL's exact locate with hint (cgal_peer.h), for
 // 1.5k, 10k and 65k probes; walk steps and fallbacks; bytes per probe of the fast and compact layouts
-// in every SH encoding and position encoding, and the smallest L2 store part by part;
-// build time next to TetGen's own call; then the headline ratios against the targets of issue 7.
+// in every SH encoding and position encoding, and the smallest L2 store part by part; build time next
+// to TetGen's own call; rebuilding the cells at load (core/cell_rebuild.h) next to TetGen's own call;
+// then the headline ratios against the targets of issues 7 and 17.
 // Prints markdown tables; every time is the median of several repetitions, all seeds are fixed, and
 // every method runs on the same probes and the same query points.
 #include "bench.h"
@@ -15,7 +16,9 @@
 #include "plain_walk.h"
 #include "query_sets.h"
 
+#include "bake/store_builder.h"
 #include "capi/tetprobe.h"
+#include "core/cell_rebuild.h"
 #include "core/half.h"
 
 #include <tetgen.h>
@@ -314,12 +317,30 @@ struct SizeResult {
     tp_store_info encoded[2][4][2] = {};
     double single_unorm8 = 0, single_smallest = 0;
     double floor_encoded[4] = {};  // the blend-only floor with core's kernel of each SH encoding (fast layout)
+    double rebuild_ms = 0;  // core's rebuild of cells, neighbours and start grid from the stored probes
 };
 
 const char* const kEncodingNames[4] = {"half", "unorm8", "half_l1", "unorm8_l1"};  // by TP_SH_ENCODING_*
 const char* const kSectionNames[TP_STORE_SECTION_COUNT] = {
     "header and section table", "positions", "hull normals", "SH", "probe_source", "input_remap", "cells",
     "start grid", "occlusion", "leak offsets", "leak edges", "alignment padding"};
+
+// core's rebuild_cells on the stored probes of the same points (what a store that keeps no cells
+// costs at load): Delaunay, hull and outer cells, ordering, start grid.
+double time_rebuild(const std::vector<float>& positions) {
+    tetprobe::BuildSettings settings;
+    const tetprobe::StoreData d =
+        tetprobe::build_store_data(positions.data(), 12, nullptr, 108, positions.size() / 3, settings);
+    return median_seconds(
+        [&] {
+            const Clock::time_point t0 = Clock::now();
+            const tetprobe::RebuiltCells r = tetprobe::rebuild_cells(d.positions.data(), d.probe_count(), d.dimension, d.axis,
+                                                                     true, d.bounds_min, d.bounds_max, d.grid);
+            const double seconds = seconds_since(t0);
+            return r.cell_vertices == d.cell_vertices ? seconds : NAN;  // a rebuild must give the stored cells
+        },
+        kBuildRepetitions);
+}
 
 bool run_size(size_t n, SizeResult* r, float* sink) {
     r->probes = n;
@@ -347,6 +368,7 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
                                     1);
     if (!fast || !compact) return false;
     r->tetgen_ms = 1e3 * time_tetgen(positions);
+    r->rebuild_ms = 1e3 * time_rebuild(positions);
     r->fast = store_info(fast.get());
     r->compact = store_info(compact.get());
 
@@ -589,6 +611,16 @@ int run_store_bench(int argc, char** argv) {
                     outside_cells_and_grid / small.probes, goal, goal - outside_cells, (goal - outside_cells) / small.cells,
                     small.cells, goal - outside_cells_and_grid, (goal - outside_cells_and_grid) / small.cells);
     }
+    std::printf("### Rebuilding cells at load\n\n");
+    std::printf("| probes | rebuild ms | rebuild ms per 10k probes | TetGen tetrahedralize(\"Qz\") ms | rebuild / TetGen |\n");
+    std::printf("| ---: | ---: | ---: | ---: | ---: |\n");
+    for (int i = 0; i < kSizes; ++i)
+        std::printf("| %zu | %s | %s | %.1f | %s |\n", r[i].probes, fmt("%.1f", r[i].rebuild_ms).c_str(),
+                    fmt("%.1f", r[i].rebuild_ms * 1e4 / r[i].probes).c_str(), r[i].tetgen_ms,
+                    fmt("%.2fx", r[i].rebuild_ms / r[i].tetgen_ms).c_str());
+    std::printf("\nrebuild: core's `rebuild_cells` from the stored probes (exact Delaunay, hull and outer cells, "
+                "ordering, neighbours, start grid), which gives the stored cells index for index (a run that does not "
+                "prints -); TetGen: its Delaunay call alone on the same points.\n\n");
 
     std::printf("### Headline ratios (this run; targets of issue 7)\n\n");
     std::printf("| ratio | %zu probes | %zu probes | %zu probes | target | |\n", kProbeCounts[0], kProbeCounts[1],
@@ -642,6 +674,8 @@ int run_store_bench(int argc, char** argv) {
     }
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].build_ms / r[i].tetgen_ms;
     print_ratio("build / TetGen", v, "%.2fx", "<= 1.5x at 10k and 65k", true, 1.5, large);
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].rebuild_ms * 1e4 / r[i].probes;
+    print_ratio("rebuild at load, ms per 10k probes (issue 17)", v, "%.1f", "<= 20", true, 20.0, all);
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].cold / r[i].single;
     print_ratio("cold / coherent", v, "%.2fx", "<= 4x at 65k", true, 4.0, last);
     for (int i = 0; i < kSizes; ++i) v[i] = 100.0 * r[i].walk_outside_cold.fallback;

@@ -1,8 +1,9 @@
-// tetprobe_bench [store|bake|locate|probes|all|methods|precision] [--out DIR] [--quick]: the store
+// tetprobe_bench [store|bake|locate|probes|all|methods|precision|leak|levels] [--out DIR] [--quick]: the store
 // benchmark (this folder's bench_store.cpp) and the bake benchmark (bench_bake.cpp), and the parts of
 // the report that write JSON into DIR for samples/bench/report.py: methods and precision
 // (bench_methods.cpp, bench_precision.cpp), locate and probes (bench_locate.cpp,
-// bench_probe_count.cpp); bake writes bake.json too when given --out. Default: all (store, bake,
+// bench_probe_count.cpp), leak (bench_leak.cpp) and the real levels (bench_levels.cpp); bake writes bake.json too
+// when given --out. Default: all (store, bake,
 // locate, probes).
 #include "bench.h"
 
@@ -13,6 +14,7 @@ int main(int argc, char** argv) {
     const char* which = argc > 1 ? argv[1] : "all";
     if (!std::strcmp(which, "methods")) return run_methods_bench(argc, argv);
     if (!std::strcmp(which, "precision")) return run_precision_bench(argc, argv);
+    if (!std::strcmp(which, "levels")) return run_levels_bench(argc, argv);  // bench_levels.cpp
     if (!std::strcmp(which, "leak")) return run_leak_bench(argc, argv);  // not part of "all": bench_leak.cpp
     const bool all = !std::strcmp(which, "all");
     const bool store = all || !std::strcmp(which, "store");
@@ -20,7 +22,7 @@ int main(int argc, char** argv) {
     const bool locate = all || !std::strcmp(which, "locate");
     const bool probes = all || !std::strcmp(which, "probes");
     if (!store && !bake && !locate && !probes) {
-        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all|methods|precision|leak] [--out DIR] "
+        std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all|methods|precision|leak|levels] [--out DIR] "
                              "[--quick]\n");
         return 2;
     }

@@ -70,4 +70,20 @@ void write_npy_f32(const std::string& dir, const std::string& name, const float*
     write_atomically(dir, name, bytes);
 }
 
+bool read_npy_f32(const std::string& path, size_t cols, std::vector<float>* out) {
+    std::ifstream in(path, std::ios::binary);
+    char start[10];
+    if (!in.read(start, sizeof start) || std::memcmp(start, "\x93NUMPY\x01\x00", 8) != 0) return false;
+    const size_t header_size = size_t(uint8_t(start[8])) | size_t(uint8_t(start[9])) << 8;
+    std::string header(header_size, ' ');
+    if (!in.read(&header[0], std::streamsize(header_size))) return false;
+    const std::string descr = "'descr': '<f4', 'fortran_order': False, 'shape': (";
+    const size_t at = header.find(descr);
+    if (at == std::string::npos) return false;
+    size_t rows = 0, columns = 0;
+    if (std::sscanf(header.c_str() + at + descr.size(), "%zu, %zu)", &rows, &columns) != 2 || columns != cols) return false;
+    out->assign(rows * cols, 0.0f);
+    return bool(in.read(reinterpret_cast<char*>(out->data()), std::streamsize(out->size() * sizeof(float))));
+}
+
 }  // namespace bench

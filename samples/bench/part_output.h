@@ -7,6 +7,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace bench {
 
@@ -26,5 +27,9 @@ void write_json_file(const std::string& dir, const std::string& name, const nloh
 
 // Writes a float32 array of rows x cols as a NumPy .npy file (format 1.0, little-endian, C order).
 void write_npy_f32(const std::string& dir, const std::string& name, const float* data, size_t rows, size_t cols);
+
+// Reads what write_npy_f32 wrote (float32, little-endian, C order, two dimensions) into out; returns
+// false when the file is missing or is not such an array, or its columns are not `cols`.
+bool read_npy_f32(const std::string& path, size_t cols, std::vector<float>* out);
 
 }  // namespace bench

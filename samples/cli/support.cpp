@@ -21,12 +21,13 @@ StorePtr load_store(const std::string& path) {
 }
 
 StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,
-                     const BuildChoices& choices) {
+                     const BuildChoices& choices, const tp_scene* scene) {
     tp_build_options options;
     check(tp_build_options_init(&options), "tp_build_options_init");
     options.flags |= choices.flags;
     options.sh_encoding = choices.sh_encoding;
     options.quantize_positions = choices.quantize_positions ? 1u : 0u;
+    options.scene = scene;
     ProgressBar bar{"build"};
     if (show_progress) {
         options.progress = &ProgressBar::callback;

@@ -10,6 +10,7 @@
 #include "probe_families.h"
 
 #include "bake/store_builder.h"
+#include "capi/tetprobe.h"
 #include "core/store.h"
 #include "core/store_data.h"
 
@@ -42,7 +43,8 @@ struct Built {
 inline Built build(const families::ProbeSet& set, uint32_t flags, double merge_tolerance = 0,
                    const std::vector<float>* sh = nullptr) {
     tetprobe::BuildSettings settings;
-    settings.flags = flags;
+    settings.flags = flags & ~uint32_t(TP_BUILD_COMPACT);
+    settings.layout = (flags & TP_BUILD_COMPACT) ? tetprobe::kLayoutCompact : tetprobe::kLayoutFast;
     settings.merge_tolerance = merge_tolerance;
     Built b;
     b.data = tetprobe::build_store_data(set.positions.data(), 3 * sizeof(float), sh ? sh->data() : nullptr,

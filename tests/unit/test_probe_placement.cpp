@@ -9,7 +9,6 @@
 #include "bake/probe_placement.h"
 #include "bake/probe_pruning.h"
 #include "bake/store_builder.h"
-#include "capi/struct_defaults.h"
 #include "core/error.h"
 #include "core/store.h"
 
@@ -29,8 +28,8 @@ Scene lit_room() {
     add_box(scene, {0, 0, 0}, {6, 3, 6}, false);
     add_box(scene, {2.5f, 0, 2.5f}, {3.5f, 3, 3.5f}, true);
     add_box(scene, {4.5f, 0, 0.5f}, {5.5f, 0.8f, 1.5f}, true);
-    tp_light lamp = default_c_light();
-    lamp.position[0] = 0.6f, lamp.position[1] = 2.4f, lamp.position[2] = 0.6f;
+    LightDescription lamp;
+    lamp.position = {0.6f, 2.4f, 0.6f};
     lamp.intensity = 30.0f;
     scene.add_light(lamp);
     return scene;
@@ -110,7 +109,7 @@ TEST_CASE("placement candidates: outside geometry and clear of every surface by 
     CandidateRules rules;
     rules.spacing = 0.75;
     rules.margin = 0.2;
-    const Candidates c = find_candidates(scene, rules, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 2, Progress{});
     CHECK(c.grid_points == 256);
     CHECK(candidate_bound(scene, rules) == 256);
     // Exactly the grid points that are outside the solids and at least the margin from every surface.
@@ -142,7 +141,7 @@ TEST_CASE("placement candidates: walkable stands points across a band above ever
     rules.margin = 0.2;
     rules.walk_min_height = 0.0;
     rules.walk_max_height = 1.5;  // two layers: 0.375 and 1.125 above each floor
-    const Candidates c = find_candidates(scene, rules, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 2, Progress{});
     std::vector<float> expected;
     size_t before_tests = 0;
     for (int z = 0; z < 8; ++z)
@@ -178,8 +177,8 @@ TEST_CASE("placement candidates: walkable bands end below the ceiling, inside th
     Scene scene;
     add_box(scene, {0, 0, 0}, {6, 3, 6}, false);
     add_box(scene, {2, 0, 2}, {4, 2, 4}, true);
-    tp_light lamp = default_c_light();
-    lamp.position[0] = 0.6f, lamp.position[1] = 2.4f, lamp.position[2] = 0.6f;
+    LightDescription lamp;
+    lamp.position = {0.6f, 2.4f, 0.6f};
     lamp.intensity = 30.0f;
     scene.add_light(lamp);
     CandidateRules rules;
@@ -188,7 +187,7 @@ TEST_CASE("placement candidates: walkable bands end below the ceiling, inside th
     auto in_room = [&](const float* p) {
         return p[0] > 0 && p[0] < 6 && p[1] > 0 && double(p[1]) <= ceiling && p[2] > 0 && p[2] < 6;
     };
-    const Candidates c = find_candidates(scene, rules, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 2, Progress{});
     size_t on_crate = 0;
     for (size_t i = 0; i < c.positions.size() / 3; ++i) {
         CHECK(in_room(&c.positions[3 * i]));
@@ -220,7 +219,7 @@ TEST_CASE("placement candidates: a walkable band far taller than the scene still
     rules.spacing = 0.5;
     rules.margin = 0.01;
     rules.walk_max_height = 1e4;
-    const Candidates c = find_candidates(scene, rules, 1, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 1, Progress{});
     CHECK(c.positions.size() / 3 == 8);  // two layers (0.25 and 0.75 above the floor) in each of 2 x 2 columns
     for (size_t i = 0; i < c.positions.size() / 3; ++i) {
         const float* p = &c.positions[3 * i];
@@ -234,7 +233,7 @@ TEST_CASE("placement candidates: the whole mode stays within the scene's bounds"
     add_box(scene, {0, 0, 0}, {5.3f, 2.9f, 4.1f}, false);
     CandidateRules rules;
     rules.margin = 0;
-    const Candidates c = find_candidates(scene, rules, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 2, Progress{});
     CHECK(c.positions.size() / 3 == 5 * 2 * 4);
     for (const std::vector<float>* points : {&c.positions, &c.held_out})
         for (size_t i = 0; i < points->size() / 3; ++i) {
@@ -285,7 +284,7 @@ TEST_CASE("placement: pruning keeps probes where the light changes, beating a un
 
     // A uniform subsample of the same candidates: every (n / 40)-th in grid order.
     CandidateRules rules = settings.rules;
-    const Candidates all = find_candidates(scene, rules, 2, ProgressRange{});
+    const Candidates all = find_candidates(scene, rules, 2, Progress{});
     const size_t n = all.positions.size() / 3;
     std::vector<float> uniform;
     for (size_t i = 0; i < 40; ++i) {
@@ -334,12 +333,12 @@ TEST_CASE("placement: cancelling in any stage stops with Status::cancelled", "[p
             const char* stage;
             bool reached = false;
         } cancel{stage};
-        settings.progress = [](void* user, float, const char* now) {
+        settings.progress.callback = [](void* user, float, const char* now) {
             auto* c = static_cast<Cancel*>(user);
             c->reached = c->reached || std::string(now) == c->stage;
             return c->reached ? 1 : 0;
         };
-        settings.progress_user = &cancel;
+        settings.progress.user = &cancel;
         CHECK(status_of([&] { place_probes(scene, settings); }) == Status::cancelled);
         CHECK(cancel.reached);
     }

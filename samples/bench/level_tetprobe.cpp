@@ -1,0 +1,66 @@
+#include "level_tetprobe.h"
+
+#include <malloc.h>
+
+#include <chrono>
+#include <memory>
+#include <stdexcept>
+
+namespace bench {
+
+namespace {
+
+// Bytes of heap in use (small blocks and mapped large ones): the difference around a load is what the
+// loaded store holds.
+size_t heap_in_use() {
+    const struct mallinfo2 info = mallinfo2();
+    return info.uordblks + info.hblkhd;
+}
+
+}  // namespace
+
+nlohmann::ordered_json LevelResult::json() const {
+    nlohmann::ordered_json j = {{"method", method}, {"layout", layout}, {"label", label}, {"probes", probes},
+                                {"bytes", bytes}, {"resident_bytes", resident_bytes},
+                                {"rms_error", error.rms}, {"p95_error", error.p95}, {"max_error", error.max},
+                                {"worst_jump", error.worst_jump}, {"ns_per_query", ns_per_query},
+                                {"placement_seconds", placement_seconds}, {"bake_seconds", bake_seconds},
+                                {"build_seconds", build_seconds}};
+    if (!note.empty()) j["note"] = note;
+    return j;
+}
+
+LevelResult evaluate_tetprobe(const Level& level, const std::vector<float>& positions, const std::vector<float>& sh,
+                              const StoreLayout& layout) {
+    LevelResult r;
+    r.method = "tetprobe";
+    r.layout = layout.id;
+    r.label = "tetprobe, " + layout.label;
+    r.probes = positions.size() / 3;
+    tp_build_options options;
+    tp_build_options_init(&options);
+    layout.apply(&options, level.handle.get());
+    tp_store* built = nullptr;
+    const auto start = std::chrono::steady_clock::now();
+    if (tp_store_build(positions.data(), 0, sh.data(), 0, r.probes, &options, &built) != TP_OK)
+        throw std::runtime_error(level.name + ": tp_store_build (" + layout.id + "): " + tp_last_error());
+    r.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::unique_ptr<tp_store, tp_status (*)(tp_store*)> owner(built, tp_store_release);
+    const void* blob = nullptr;
+    size_t size = 0;
+    tp_store_blob(built, &blob, &size);
+    r.bytes = size;
+    // The store every query below uses is the one loaded from the blob, as a game loads it.
+    const size_t before = heap_in_use();
+    tp_store* loaded = nullptr;
+    if (tp_store_load(blob, size, &loaded) != TP_OK)
+        throw std::runtime_error(level.name + ": tp_store_load (" + layout.id + "): " + tp_last_error());
+    r.resident_bytes = heap_in_use() - before;
+    std::unique_ptr<tp_store, tp_status (*)(tp_store*)> store(loaded, tp_store_release);
+    int32_t hint = -1;
+    measure_method(level, [&] { hint = -1; }, [&](const float* p, float* out) { tp_store_interpolate(loaded, p, &hint, out); },
+                   &r);
+    return r;
+}
+
+}  // namespace bench

@@ -1,0 +1,18 @@
+// tetprobe on a real level: a probe set baked with the level's probe settings, built into a store of one
+// layout (store_layouts.h), and measured with the level's metric (level_eval.h). Bytes are the blob's size
+// (what ships) and the heap the loaded store holds (the compact layout rebuilds its neighbours on load).
+#pragma once
+
+#include "level_eval.h"
+#include "store_layouts.h"
+
+#include <vector>
+
+namespace bench {
+
+// positions: 3 floats per probe; sh: 27 per probe (their bake). Throws std::runtime_error with
+// tp_last_error when the build fails.
+LevelResult evaluate_tetprobe(const Level& level, const std::vector<float>& positions, const std::vector<float>& sh,
+                              const StoreLayout& layout);
+
+}  // namespace bench
