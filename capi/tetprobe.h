@@ -348,6 +348,61 @@ TP_API tp_status tp_store_interpolate_occlusion_batch(const tp_store* store, siz
                                                       float* out_sh, size_t sh_stride, float* out_occlusion,
                                                       size_t occlusion_stride, const tp_batch_options* options);
 
+/* Probe volumes for large objects (what Unity's Light Probe Proxy Volume does): the interpolated SH on a grid of
+   up to 32 x 32 x 32 points around an object, for a renderer to upload as a 3D texture and sample per pixel. */
+
+/** The most points along each side of a volume. */
+#define TP_VOLUME_MAX_SIDE 32
+
+/** What tp_store_sample_volume writes per point. The Unity formats are the shader constants of Unity's built-in
+    pipeline, which ShadeSH9 evaluates to the irradiance divided by pi: with Unity's coefficients u_i = c_i s_i
+    (c our SH of one channel; s, each rounded to float: 1/(2 sqrt(pi)); sqrt(3)/(3 sqrt(pi)) for band 1;
+    sqrt(15)/(8 sqrt(pi)) for L2-2, L2-1 and L21; sqrt(5)/(16 sqrt(pi)) for L20; sqrt(15)/(16 sqrt(pi)) for L22),
+    unity_SHAc = (u3, u1, u2, u0 - u6), unity_SHBc = (u4, u5, 3 u6, u7), unity_SHC = (u8 of r, g, b, 1), each
+    product and difference rounded to float. */
+#define TP_VOLUME_SH_L2 0u     /* 27 floats: the SH contract */
+#define TP_VOLUME_SH_L1 1u     /* 12 floats: bands 0 and 1, [r0..r3, g0..g3, b0..b3] (the first 4 of each channel) */
+/** 3 float4: unity_SHAr, unity_SHAg, unity_SHAb of the SH without band 2 (so w = u0), the L0 + L1 terms a Light
+    Probe Proxy Volume texture holds: its RGBAFloat (or RGBAHalf) 3D texture of 4 x dims[0] by dims[1] by
+    dims[2] texels holds SHAr in x block 0, SHAg in block 1, SHAb in block 2 (and probe occlusion, not written
+    here, in block 3): vector_stride 16 x dims[0], point_stride 16, row_stride 64 x dims[0], slice_stride
+    64 x dims[0] x dims[1] write it directly. */
+#define TP_VOLUME_UNITY_L1 2u
+#define TP_VOLUME_UNITY_L2 3u  /* 7 float4: unity_SHAr, SHAg, SHAb, SHBr, SHBg, SHBb, SHC */
+
+/** Layout of a volume's output (set struct_size, or call tp_volume_layout_init). Point (x, y, z) starts at
+    x point_stride + y row_stride + z slice_stride bytes; a Unity format's float4 k of the point k vector_stride
+    bytes after that. 0 = packed: point_stride one point's floats (4 x 27, 4 x 12, 16 x 3 or 16 x 7 bytes),
+    row_stride dims[0] point strides, slice_stride dims[1] row strides, vector_stride 16. A stride below the
+    bytes written at once (a point's floats; one float4 in a Unity format) is refused, as is a layout whose
+    last byte would lie beyond PTRDIFF_MAX bytes from out or wrap the address space. */
+typedef struct tp_volume_layout {
+    uint32_t struct_size;
+    uint32_t format;             /* TP_VOLUME_* (default TP_VOLUME_SH_L2) */
+    size_t point_stride;
+    size_t row_stride;
+    size_t slice_stride;
+    size_t vector_stride;        /* Unity formats only (ignored by the others) */
+} tp_volume_layout;
+
+/** Fills defaults (TP_VOLUME_SH_L2, packed) and struct_size. */
+TP_API tp_status tp_volume_layout_init(tp_volume_layout* layout);
+
+/** Fills a probe volume: the SH at every point origin + (x, y, z) * cell_size (per axis, computed as
+    float(double(origin) + double(index) x double(cell_size))) for x < dims[0], y < dims[1], z < dims[2], each
+    dimension 1..TP_VOLUME_MAX_SIDE, cell_size finite and positive. The grid is walked neighbour to neighbour:
+    slices z = 0, 1, ...; in slice z the rows y ascending when z is even, descending when odd; in the r-th row
+    walked (r counted from 0 over the whole walk) x ascending when r is even, descending when odd; one cell hint
+    is carried from point to point, so each point's SH is bit for bit what tp_store_interpolate returns there
+    when called in that order with that hint (leak control included). cell_hint (may be NULL: start cold): in,
+    the cell to start from; out, the cell of point (0, 0, 0), where the next frame's volume starts. layout may be
+    NULL (TP_VOLUME_SH_L2, packed). Never allocates. Fails as tp_store_interpolate does (TP_ERROR_OUTSIDE or
+    TP_ERROR_INVALID_BLOB) naming the first point that failed, after filling the whole volume (zero SH, or its
+    Unity constants, at the points that failed). */
+TP_API tp_status tp_store_sample_volume(const tp_store* store, const float origin[3], const float cell_size[3],
+                                        const uint32_t dims[3], int32_t* cell_hint, const tp_volume_layout* layout,
+                                        float* out);
+
 /* ------------------------------------------------------------------------------------------------
  * SH helpers (see the SH contract above).
  * --------------------------------------------------------------------------------------------- */

@@ -102,6 +102,18 @@ namespace TetProbe
         public float t;
     }
 
+    /// <summary>tp_volume_layout: the format (TP_VOLUME_*) and byte strides of a probe volume (0 = packed).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativeVolumeLayout
+    {
+        public uint struct_size;
+        public uint format;
+        public UIntPtr point_stride;
+        public UIntPtr row_stride;
+        public UIntPtr slice_stride;
+        public UIntPtr vector_stride;
+    }
+
     /// <summary>tp_scene_load_options.</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct NativeSceneLoadOptions
@@ -200,6 +212,11 @@ namespace TetProbe
         public const uint ShWindowNone = 0;
         public const uint ShWindowSloan = 1;
         public const uint ShWindowNonnegative = 2;
+        public const uint VolumeMaxSide = 32;
+        public const uint VolumeShL2 = 0;
+        public const uint VolumeShL1 = 1;
+        public const uint VolumeUnityL1 = 2;
+        public const uint VolumeUnityL2 = 3;
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern uint tp_version();
@@ -291,6 +308,13 @@ namespace TetProbe
             [In] Vector3[] positions, UIntPtr position_stride, [In, Out] int[] hints, UIntPtr hint_stride,
             [Out] SphericalHarmonicsL2[] sh, UIntPtr sh_stride, [Out] Vector4[] occlusion, UIntPtr occlusion_stride,
             ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_volume_layout_init(ref NativeVolumeLayout layout);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_sample_volume(StoreHandle store, ref Vector3 origin, ref Vector3 cell_size,
+            [In] uint[] dims, ref int cell_hint, ref NativeVolumeLayout layout, [Out] float[] output);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_sh_eval_radiance(ref SphericalHarmonicsL2 sh, ref Vector3 direction, out Vector3 rgb);

@@ -274,6 +274,19 @@ namespace TetProbe
             return location;
         }
 
+        public static NativeVolumeLayout VolumeLayout()
+        {
+            var layout = new NativeVolumeLayout();
+            Check(NativeMethods.tp_volume_layout_init(ref layout));
+            return layout;
+        }
+
+        public static void SampleVolume(StoreHandle store, Vector3 origin, Vector3 cellSize, uint[] dims, ref int hint,
+            NativeVolumeLayout layout, float[] output)
+        {
+            Check(NativeMethods.tp_store_sample_volume(store, ref origin, ref cellSize, dims, ref hint, ref layout, output));
+        }
+
         public static void ShAddAmbient(ref SphericalHarmonicsL2 sh, float r, float g, float b)
         {
             EnsureVersion();

@@ -57,6 +57,19 @@ namespace TetProbe
         public float T;
     }
 
+    /// <summary>What ProbeStore.SampleVolume writes per point (TP_VOLUME_*).</summary>
+    public enum VolumeFormat
+    {
+        /// <summary>27 floats: our SH (SphericalHarmonicsL2's layout).</summary>
+        ShL2 = 0,
+        /// <summary>12 floats: bands 0 and 1, 4 per channel.</summary>
+        ShL1 = 1,
+        /// <summary>3 float4: unity_SHAr, unity_SHAg, unity_SHAb of the L1 SH (a Light Probe Proxy Volume's texels).</summary>
+        UnityL1 = 2,
+        /// <summary>7 float4: unity_SHAr, SHAg, SHAb, SHBr, SHBg, SHBb, SHC (ShadeSH9's constants).</summary>
+        UnityL2 = 3,
+    }
+
     /// <summary>Options of ProbeStore.Build (tp_build_options); a new instance holds the library's defaults.</summary>
     public sealed class BuildOptions
     {
@@ -290,6 +303,58 @@ namespace TetProbe
                 Probes = new[] { n.probe0, n.probe1, n.probe2, n.probe3 },
                 Weights = new[] { n.weight0, n.weight1, n.weight2, n.weight3 },
             };
+        }
+
+        /// <summary>A probe volume (Unity's Light Probe Proxy Volume): the SH at origin + (x, y, z) * cellSize for
+        /// x &lt; nx, y &lt; ny, z &lt; nz (each 1..32) into output, packed [z][y][x] with the format's floats per point
+        /// (27, 12, 3 x 4 or 7 x 4; see VolumeFormat), each point bit for bit what Interpolate gives there in the
+        /// volume's walk (tp_store_sample_volume). hint: the cell to start from (-1 = none), updated to the cell of
+        /// point (0, 0, 0) for the next frame.</summary>
+        public void SampleVolume(Vector3 origin, Vector3 cellSize, int nx, int ny, int nz, VolumeFormat format,
+                                 float[] output, ref int hint)
+        {
+            SampleVolume(origin, cellSize, nx, ny, nz, format, output, ref hint, 0, 0, 0, 0);
+        }
+
+        /// <summary>SampleVolume with byte strides into output (0 = packed): point (x, y, z) starts at
+        /// x pointStride + y rowStride + z sliceStride bytes, a Unity format's float4 k at k vectorStride bytes after
+        /// that. With 16, 64 nx, 64 nx ny and 16 nx, VolumeFormat.UnityL1 fills a Light Probe Proxy Volume's
+        /// RGBAFloat atlas (4 nx by ny by nz texels: SHAr, SHAg, SHAb, and a fourth block left as it is).</summary>
+        public void SampleVolume(Vector3 origin, Vector3 cellSize, int nx, int ny, int nz, VolumeFormat format,
+                                 float[] output, ref int hint, long pointStride, long rowStride, long sliceStride,
+                                 long vectorStride)
+        {
+            if (output == null) throw new ArgumentNullException("output");
+            int[] sides = { nx, ny, nz };
+            for (int a = 0; a < 3; ++a)
+                if (sides[a] < 1 || sides[a] > NativeMethods.VolumeMaxSide)
+                    throw new ArgumentOutOfRangeException("n" + "xyz"[a], sides[a], "a volume has 1 to 32 points a side");
+            if (pointStride < 0 || rowStride < 0 || sliceStride < 0 || vectorStride < 0)
+                throw new ArgumentException("strides must not be negative");
+            bool unity = format == VolumeFormat.UnityL1 || format == VolumeFormat.UnityL2;
+            long unit = format == VolumeFormat.ShL2 ? 108 : format == VolumeFormat.ShL1 ? 48 : 16;
+            long units = format == VolumeFormat.UnityL2 ? 7 : format == VolumeFormat.UnityL1 ? 3 : 1;
+            // The bytes the library writes, with its defaults for zero strides: they must lie inside output (the
+            // library checks the strides themselves).
+            long vector = vectorStride != 0 ? vectorStride : unit;
+            long point = pointStride != 0 ? pointStride : units * unit;
+            long row = rowStride != 0 ? rowStride : nx * point;
+            long slice = sliceStride != 0 ? sliceStride : ny * row;
+            const long limit = long.MaxValue / 8;
+            if (point > limit || row > limit || slice > limit || vector > limit)
+                throw new ArgumentException("a stride is too large for any array");
+            long extent = (nx - 1) * point + (ny - 1) * row + (nz - 1) * slice + (units - 1) * vector + unit;
+            if (extent > 4L * output.Length)
+                throw new ArgumentException("output holds " + output.Length + " floats; the volume's layout needs " +
+                                            (extent + 3) / 4, "output");
+            NativeVolumeLayout layout = NativeProxy.VolumeLayout();
+            layout.format = (uint)format;
+            layout.point_stride = (UIntPtr)pointStride;
+            layout.row_stride = (UIntPtr)rowStride;
+            layout.slice_stride = (UIntPtr)sliceStride;
+            layout.vector_stride = unity ? (UIntPtr)vectorStride : UIntPtr.Zero;
+            NativeProxy.SampleVolume(Live(), origin, cellSize, new[] { (uint)nx, (uint)ny, (uint)nz }, ref hint, layout,
+                                     output);
         }
 
         StoreHandle Live()

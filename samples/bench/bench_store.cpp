@@ -11,6 +11,7 @@
 
 #include "bench_timing.h"
 #include "blob_sh.h"
+#include "bench_volume.h"
 #include "coherent_timing.h"
 #include "cgal_peer.h"
 #include "plain_walk.h"
@@ -305,6 +306,7 @@ struct SizeResult {
     double floor = 0, plain = 0, cgal = NAN, single = 0, single_compact = 0;
     double batch = 0, batch_jobs2 = 0, batch_library2 = 0;
     double cold = 0, teleport = 0, outside_coherent = 0, outside_cold = 0;
+    double volume = 0, volume_steps = 0;  // a 16^3 probe volume: ns and walk steps per point (bench_volume.cpp)
     WalkStats walk_coherent, walk_cold, walk_teleport, walk_outside_coherent, walk_outside_cold;
     PlainWalkCounts plain_counts;
     size_t plain_flat_cells = 0;
@@ -378,6 +380,8 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
         return false;
     }
     r->floor = time_blend_floor(fast.get(), blob, paths, sink);
+    r->volume = time_volume_points(fast.get(), paths, sink);
+    r->volume_steps = volume_steps_per_point(fast.get(), paths);
 
     const void* blob_data = nullptr;
     size_t blob_size = 0;
@@ -506,6 +510,7 @@ int run_store_bench(int argc, char** argv) {
     print_row("tetprobe batch, 2 std::threads x 512 objects per frame (wall time / queries)", r,
               &SizeResult::batch_jobs2);
     print_row("tetprobe batch, library `threads = 2` (wall time / queries)", r, &SizeResult::batch_library2);
+    print_row("tetprobe 16^3 probe volume inside the box, `tp_store_sample_volume` (ns per point)", r, &SizeResult::volume);
     print_row("tetprobe cold (no hint)", r, &SizeResult::cold);
     print_row("tetprobe teleport (hint of the previous random point)", r, &SizeResult::teleport);
     print_row("tetprobe outside the hull, coherent", r, &SizeResult::outside_coherent);
@@ -631,6 +636,11 @@ int run_store_bench(int argc, char** argv) {
     double v[kSizes];
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].single / r[i].floor;
     print_ratio("coherent single / floor", v, "%.2fx", "<= 1.5x", true, 1.5, all);
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].volume / r[i].floor;
+    print_ratio("16^3 volume per point / floor", v, "%.2fx", "<= 3x", true, 3.0, all);
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].volume_steps;
+    print_ratio("16^3 volume: walk steps per point (0.25 apart; coherent objects: see Walk)", v, "%.2f", "-", true,
+                INFINITY, all);
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].cgal / r[i].single;
     if (cgal) print_ratio("CGAL / tetprobe coherent", v, "%.2fx", ">= 4x", false, 4.0, all);
     else std::printf("| CGAL / tetprobe coherent | - | - | - | >= 4x | CGAL: not installed, peer skipped |\n");

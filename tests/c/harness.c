@@ -174,6 +174,7 @@ int main(int argc, char** argv) {
     test_placement_whole_and_walkable();
     test_inside_probes();
     test_buffer_sizes_and_strides();
+    test_probe_volumes();
     test_store_files();
 #endif
     printf("%d passed, %d failed\n", g_passed, g_failed);

@@ -104,6 +104,7 @@ void test_occlusion_bake_and_blend(void);
 void test_leak_control_queries(void);
 /* buffers.c: sizes, counts and strides that overflow are refused by name; odd strides answer as packed ones. */
 void test_buffer_sizes_and_strides(void);
+void test_probe_volumes(void);
 /* store_files.c (POSIX): load refuses non-regular and too large files; saves keep modes, follow links, clean up. */
 void test_store_files(void);
 

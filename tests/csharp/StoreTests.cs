@@ -83,6 +83,58 @@ static class StoreTests
             foreach (float w in inside.Weights) sum += w;
             Tests.Check(Math.Abs(sum - 1) < 1e-6, "located weights sum to 1");
 
+            // A probe volume: each point the single query replayed in the documented walk with the carried hint.
+            {
+                int nx = 5, ny = 4, nz = 3;
+                var origin = new Vector3(-0.7f, -0.3f, 0.2f);
+                var cell = new Vector3(1.1f, 1.3f, 1.7f);
+                var volume = new float[27 * nx * ny * nz];
+                int volumeHint = -1, replayHint = -1, firstCell = -2, row = 0;
+                store.SampleVolume(origin, cell, nx, ny, nz, VolumeFormat.ShL2, volume, ref volumeHint);
+                bool equal = true;
+                for (int z = 0; z < nz; ++z)
+                    for (int j = 0; j < ny; ++j, ++row)
+                    {
+                        int y = z % 2 == 1 ? ny - 1 - j : j;
+                        for (int i = 0; i < nx; ++i)
+                        {
+                            int x = row % 2 == 1 ? nx - 1 - i : i;
+                            var p = new Vector3((float)((double)origin.x + x * (double)cell.x),
+                                                (float)((double)origin.y + y * (double)cell.y),
+                                                (float)((double)origin.z + z * (double)cell.z));
+                            SphericalHarmonicsL2 single;
+                            store.Interpolate(p, ref replayHint, out single);
+                            if (row == 0 && i == 0) firstCell = replayHint;
+                            int at = 27 * (x + nx * (y + ny * z));
+                            for (int c = 0; c < 3; ++c)
+                                for (int k = 0; k < 9; ++k) equal &= volume[at + 9 * c + k] == single[c, k];
+                        }
+                    }
+                Tests.Check(equal && volumeHint == firstCell, "SampleVolume equals the single queries of its walk");
+                var atlas = new float[4 * 4 * nx * ny * nz];
+                for (int i = 0; i < atlas.Length; ++i) atlas[i] = -3;
+                int atlasHint = -1;
+                store.SampleVolume(origin, cell, nx, ny, nz, VolumeFormat.UnityL1, atlas, ref atlasHint, 16, 64 * nx,
+                                   64 * nx * ny, 16 * nx);
+                bool occlusionUntouched = true;
+                for (int t = 0; t < atlas.Length / 4; ++t)
+                    if (t % (4 * nx) >= 3 * nx) occlusionUntouched &= atlas[4 * t] == -3 && atlas[4 * t + 3] == -3;
+                Tests.Check(occlusionUntouched && atlas[3] != -3, "SampleVolume into a proxy volume atlas leaves its fourth block");
+                Tests.Throws<ArgumentException>(() => store.SampleVolume(origin, cell, nx, ny, nz, VolumeFormat.ShL2,
+                                                                         new float[27 * nx * ny * nz - 1], ref volumeHint),
+                                                "SampleVolume refuses an output that is too small");
+                Tests.Throws<ArgumentException>(() => store.SampleVolume(origin, cell, nx, ny, nz, VolumeFormat.UnityL1, atlas,
+                                                                         ref volumeHint, 16, 64 * nx, 64 * nx * ny + 64, 16 * nx),
+                                                "SampleVolume refuses strides that run past the output");
+                Tests.Throws<ArgumentOutOfRangeException>(() => store.SampleVolume(origin, cell, 33, ny, nz, VolumeFormat.ShL2,
+                                                                                   volume, ref volumeHint),
+                                                          "SampleVolume refuses 33 points a side");
+                Tests.Throws<TetProbeException>(() => store.SampleVolume(origin, new Vector3(0, 1, 1), 1, 1, 1,
+                                                                         VolumeFormat.ShL2, volume, ref volumeHint),
+                                                "SampleVolume: the library refuses a zero cell size",
+                                                e => e.Status == TetProbeStatus.InvalidArgument && e.Message.Contains("cell_size"));
+            }
+
 #if TETPROBE_SPAN
             var points = new Vector3[100];
             for (int i = 0; i < points.Length; ++i) points[i] = new Vector3(0.04f * i, 0.03f * i, 4 - 0.035f * i);

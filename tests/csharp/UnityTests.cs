@@ -292,6 +292,80 @@ static class UnityTests
         Invoke(lighting, "Update");
         Invoke(lighting, "OnDisable");
         Check(renderer.lightProbeUsage == UnityEngine.Rendering.LightProbeUsage.Off, "lighting: each renderer's own usage is restored");
+        ProxyVolume(asset);
+    }
+
+    /// <summary>TetProbeProxyVolume: the renderer's Light Probe Proxy Volume texture holds, at each grid point's texel, the
+    /// L0 + L1 constants of what the store interpolates there, and the unity_ProbeVolume* parameters map each point to
+    /// its texel's centre.</summary>
+    static void ProxyVolume(string asset)
+    {
+        var big = new GameObject("big");
+        var renderer = big.AddComponent<MeshRenderer>();
+        renderer.bounds = new Bounds { center = new Vector3(11.5f, 1.5f, 2.0f), size = new Vector3(3, 2, 3.5f) };
+        var proxy = big.AddComponent<TetProbeProxyVolume>();
+        proxy.store = new TextAsset(File.ReadAllBytes(asset));
+        proxy.resolutionX = 4;
+        proxy.resolutionY = 3;
+        proxy.resolutionZ = 5;
+        proxy.halfFloat = false;
+        Invoke(proxy, "OnEnable");
+        Invoke(proxy, "Update");
+        var block = new MaterialPropertyBlock();
+        renderer.GetPropertyBlock(block);
+        var texture = block.GetTexture("unity_ProbeVolumeSH") as Texture3D;
+        Check(texture != null && texture.width == 16 && texture.height == 3 && texture.depth == 5 &&
+              texture.format == TextureFormat.RGBAFloat && texture.Applied == 1, "proxy volume: a 16 x 3 x 5 RGBAFloat texture");
+        if (texture == null) return;
+        var texels = (float[])texture.PixelData;
+        Vector4 parameters = block.GetVector("unity_ProbeVolumeParams"), min = block.GetVector("unity_ProbeVolumeMin"),
+                sizeInv = block.GetVector("unity_ProbeVolumeSizeInv");
+        Check(parameters.x == 1 && parameters.y == 0 && Math.Abs(parameters.z - 1.0 / 16) < 1e-9, "proxy volume: parameters " + parameters);
+        double worst = 0, worstCoordinate = 0;
+        bool occlusion = true;
+        Vector3[] normals = Normals(20, new System.Random(9));
+        using (ProbeStore store = ProbeStore.Load(asset))
+        {
+            float[] cell = { 3f / 4, 2f / 3, 3.5f / 5 };
+            for (int z = 0; z < 5; ++z)
+                for (int y = 0; y < 3; ++y)
+                    for (int x = 0; x < 4; ++x)
+                    {
+                        // The grid point at the centre of cell (x, y, z) of the bounds, and its texture coordinate.
+                        var point = new Vector3(10.0f + (x + 0.5f) * cell[0], 0.5f + (y + 0.5f) * cell[1], 0.25f + (z + 0.5f) * cell[2]);
+                        worstCoordinate = Math.Max(worstCoordinate, Math.Abs((point.x - min.x) * sizeInv.x - (x + 0.5) / 4));
+                        worstCoordinate = Math.Max(worstCoordinate, Math.Abs((point.y - min.y) * sizeInv.y - (y + 0.5) / 3));
+                        worstCoordinate = Math.Max(worstCoordinate, Math.Abs((point.z - min.z) * sizeInv.z - (z + 0.5) / 5));
+                        int hint = -1;
+                        ProbeSH sh;
+                        store.Interpolate(point, ref hint, out sh);
+                        for (int c = 0; c < 3; ++c)
+                            for (int i = 4; i < 9; ++i) sh[c, i] = 0;  // the volume holds bands 0 and 1
+                        var constants = new Vector4[7];
+                        for (int k = 0; k < 3; ++k)
+                        {
+                            int at = 4 * (((z * 3 + y) * 16) + k * 4 + x);
+                            constants[k] = new Vector4(texels[at], texels[at + 1], texels[at + 2], texels[at + 3]);
+                        }
+                        constants[6] = new Vector4(0, 0, 0, 1);
+                        worst = Math.Max(worst, ShaderVersusIrradiance(constants, sh, normals));
+                        int o = 4 * (((z * 3 + y) * 16) + 12 + x);
+                        occlusion &= texels[o] == 1 && texels[o + 1] == 1 && texels[o + 2] == 1 && texels[o + 3] == 1;
+                    }
+        }
+        Check(worst < 1e-4, "proxy volume: each texel evaluates to the L1 irradiance interpolated at its point (" + worst + ")");
+        Check(worstCoordinate < 1e-5, "proxy volume: min and size map each point to its texel's centre (" + worstCoordinate + ")");
+        Check(occlusion, "proxy volume: the occlusion block is fully visible");
+        Invoke(proxy, "OnDisable");
+        renderer.GetPropertyBlock(block);
+        Check(block.GetTexture("unity_ProbeVolumeSH") == null, "proxy volume: disabled, the renderer's block is cleared");
+
+        proxy.halfFloat = true;
+        Invoke(proxy, "OnEnable");
+        Invoke(proxy, "Update");
+        Check(proxy.Volume.format == TextureFormat.RGBAHalf && proxy.Volume.PixelData is ushort[] &&
+              ((ushort[])proxy.Volume.PixelData)[4 * 12] == 0x3C00, "proxy volume: half floats (occlusion 1.0 = 0x3C00)");
+        Invoke(proxy, "OnDisable");
     }
 
     /// <summary>The editor script's light conversion: which lights Unity's probes hold, and Unity's colour linearisation.

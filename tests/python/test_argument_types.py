@@ -48,6 +48,8 @@ CALLS = {
                                                                      chain_hints=False, occlusion=False)),
     "Store.weights": (lambda: store().weights, lambda: dict(points=POINTS, hints=None, threads=1, chain_hints=False)),
     "Store.locate": (lambda: store().locate, lambda: dict(point=POINTS[0], hint=-1)),
+    "Store.sample_volume": (lambda: store().sample_volume, lambda: dict(origin=(0, 0, 0), cell_size=0.5, dims=(2, 3, 2),
+                                                                         bands=2, unity=False, hint=None, out=None)),
     "Scene.load": (lambda: Scene.load, lambda: dict(path=os.path.join(SCENES, "cornell_box.json"), scale=1.0, up="+y")),
     "Scene.add_mesh": (lambda: Scene().add_mesh, lambda: dict(vertices=QUAD, indices=[[0, 1, 2]], albedo=(1, 1, 1),
                                                                emission=(0, 0, 0), two_sided=True)),

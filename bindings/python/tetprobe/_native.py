@@ -49,6 +49,11 @@ PLACEMENT_WALKABLE = 1
 INSIDE_DROP = 0
 INSIDE_PUSH = 1
 UP_FILE = 0
+VOLUME_MAX_SIDE = 32
+VOLUME_SH_L2 = 0
+VOLUME_SH_L1 = 1
+VOLUME_UNITY_L1 = 2
+VOLUME_UNITY_L2 = 3
 #: TP_UP_POS_X ... TP_UP_NEG_Z by name.
 UP_AXES = {"+x": 1, "-x": 2, "+y": 3, "-y": 4, "+z": 5, "-z": 6}
 
@@ -84,6 +89,11 @@ class BatchOptions(Structure):
 class Location(Structure):
     _fields_ = [("struct_size", c_uint32), ("cell", c_int32), ("cell_kind", c_uint32), ("steps", c_uint32),
                 ("fallback", c_uint32), ("probes", c_uint32 * 4), ("weights", c_float * 4), ("t", c_float)]
+
+
+class VolumeLayout(Structure):
+    _fields_ = [("struct_size", c_uint32), ("format", c_uint32), ("point_stride", c_size_t), ("row_stride", c_size_t),
+                ("slice_stride", c_size_t), ("vector_stride", c_size_t)]
 
 
 class ShEvalOptions(Structure):
@@ -171,6 +181,9 @@ PROTOTYPES = (
     ("tp_store_weights_batch", _status, (_handle, c_size_t, _buffer, c_size_t, _buffer, c_size_t, _buffer,
                                          c_size_t, _buffer, c_size_t, POINTER(BatchOptions))),
     ("tp_store_locate", _status, (_handle, _buffer, POINTER(c_int32), POINTER(Location))),
+    ("tp_volume_layout_init", _status, (POINTER(VolumeLayout),)),
+    ("tp_store_sample_volume", _status, (_handle, _buffer, _buffer, _buffer, POINTER(c_int32), POINTER(VolumeLayout),
+                                         _buffer)),
     ("tp_sh_eval_radiance", _status, (_buffer, _buffer, _buffer)),
     ("tp_sh_eval_irradiance", _status, (_buffer, _buffer, _buffer)),
     ("tp_sh_add_ambient", _status, (_buffer, _buffer)),

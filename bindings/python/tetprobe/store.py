@@ -8,7 +8,7 @@ import numpy as np
 
 from . import _native
 from ._handle import NativeHandle
-from ._arrays import UINT32_MAX, UINT64_MAX, Progress, as_array, choice, flag, integer, number, rows
+from ._arrays import UINT32_MAX, UINT64_MAX, Progress, as_array, choice, flag, integer, number, rows, vector
 from ._arrays import path as _path_argument
 from ._native import SH_FLOATS, check, lib
 from .scene import scene_argument
@@ -296,6 +296,58 @@ class Store(NativeHandle):
         if single:
             return indices[0], weights[0], None
         return indices, weights, cells
+
+    def sample_volume(self, origin, cell_size, dims, *, bands=2, unity=False, hint=None, out=None):
+        """A probe volume (Unity's Light Probe Proxy Volume): the SH at origin + (x, y, z) * cell_size for
+        x < nx, y < ny, z < nz, dims[3] = (nx, ny, nz), each 1..32 -> float32 [nz, ny, nx, 27].
+
+        origin[3] and cell_size[3] (positive) are world units (cell_size may be one number). bands=1 keeps bands 0
+        and 1: [nz, ny, nx, 12], 4 per channel. unity=True gives Unity's shader constants instead: [nz, ny, nx, 3, 4]
+        (unity_SHAr, SHAg, SHAb of the L1 SH) for bands=1, [nz, ny, nx, 7, 4] (then SHBr, SHBg, SHBb, SHC) for
+        bands=2 (see TP_VOLUME_UNITY_L1 in capi/tetprobe.h). The grid is walked from neighbour to neighbour with one
+        cell hint, each point bit for bit what interpolate gives there in that walk. hint: the cell to start from
+        (an int, -1 or None = cold), or hint[1], an int32 array of one element, which is updated to the cell of
+        point (0, 0, 0) for the next frame. out: an array of the result's shape and float32 to write into (any
+        non-negative strides whose last axis is packed, e.g. a view into a texture's atlas); it is returned.
+        Points outside a store built with extrapolate=False raise Error(OUTSIDE) naming the first."""
+        bands = integer(bands, "bands", 1, 2)
+        unity = flag(unity, "unity")
+        origin = vector(origin, 3, "origin")
+        if isinstance(cell_size, numbers.Real) and not isinstance(cell_size, (bool, np.bool_)):
+            cell_size = np.full(3, number(cell_size, "cell_size"), dtype=np.float32)
+        cell_size = vector(cell_size, 3, "cell_size")
+        sides = vector(dims, 3, "dims", np.uint32)
+        nx, ny, nz = (int(side) for side in sides)
+        if unity:
+            fmt = _native.VOLUME_UNITY_L2 if bands == 2 else _native.VOLUME_UNITY_L1
+            shape = (nz, ny, nx, 7 if bands == 2 else 3, 4)
+        else:
+            fmt = _native.VOLUME_SH_L2 if bands == 2 else _native.VOLUME_SH_L1
+            shape = (nz, ny, nx, SH_FLOATS if bands == 2 else 12)
+        if out is None:
+            out = np.empty(shape, dtype=np.float32)
+        elif not isinstance(out, np.ndarray) or out.dtype != np.float32:
+            raise TypeError("out must be a float32 numpy array of shape %s (got %s)" % (shape, type(out).__name__))
+        elif out.shape != shape:
+            raise ValueError("out must have shape %s (got %s)" % (shape, out.shape))
+        elif not out.flags.writeable or out.strides[-1] != 4 or min(out.strides) < 0:
+            raise ValueError("out must be writeable with non-negative strides and its last axis packed")
+        layout = _native.VolumeLayout()
+        check(lib.tp_volume_layout_init(ctypes.byref(layout)))
+        layout.format = fmt
+        layout.slice_stride, layout.row_stride, layout.point_stride = out.strides[:3]
+        if unity:
+            layout.vector_stride = out.strides[3]
+        held = hint if isinstance(hint, np.ndarray) else None
+        if held is not None and (held.dtype != np.int32 or held.size != 1 or not held.flags.writeable):
+            raise ValueError("hint as an array must be a writeable int32 array of one element")
+        cell = ctypes.c_int32(int(held.reshape(-1)[0]) if held is not None else
+                              (-1 if hint is None else integer(hint, "hint", -2 ** 31, 2 ** 31 - 1)))
+        check(lib.tp_store_sample_volume(self._live(), origin, cell_size, sides, ctypes.byref(cell),
+                                         ctypes.byref(layout), out))
+        if held is not None:
+            held.reshape(-1)[0] = cell.value
+        return out
 
     def locate(self, point, hint=-1):
         """Diagnostics of the query at point[3] or of each of points point[M, 3] (float32 world units),

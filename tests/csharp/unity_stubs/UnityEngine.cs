@@ -54,6 +54,7 @@ namespace UnityEngine
     public struct Bounds
     {
         public Vector3 center;
+        public Vector3 size;
     }
 
     public class Object
@@ -63,6 +64,7 @@ namespace UnityEngine
         protected Object() { Live.Add(this); }
         public static T[] FindObjectsOfType<T>() where T : Object { return Live.OfType<T>().ToArray(); }
         public static void DestroyImmediate(Object o) { Live.Remove(o); }
+        public static void Destroy(Object o) { Live.Remove(o); }
         /// <summary>Stub only: forgets every object (between tests).</summary>
         public static void ResetStubScene() { Live.Clear(); }
     }
@@ -156,8 +158,18 @@ namespace UnityEngine
         {
             arrays.Clear();
             foreach (var pair in other.arrays) arrays[pair.Key] = (Vector4[])pair.Value.Clone();
+            vectors.Clear();
+            foreach (var pair in other.vectors) vectors[pair.Key] = pair.Value;
+            textures.Clear();
+            foreach (var pair in other.textures) textures[pair.Key] = pair.Value;
         }
-        public void Clear() { arrays.Clear(); }
+        readonly Dictionary<string, Vector4> vectors = new Dictionary<string, Vector4>();
+        readonly Dictionary<string, Texture> textures = new Dictionary<string, Texture>();
+        public void Clear() { arrays.Clear(); vectors.Clear(); textures.Clear(); }
+        public void SetVector(string name, Vector4 value) { vectors[name] = value; }
+        public Vector4 GetVector(string name) { Vector4 value; return vectors.TryGetValue(name, out value) ? value : new Vector4(0, 0, 0, 0); }
+        public void SetTexture(string name, Texture value) { textures[name] = value; }
+        public Texture GetTexture(string name) { Texture value; return textures.TryGetValue(name, out value) ? value : null; }
         public void SetVectorArray(string name, Vector4[] values) { arrays[name] = (Vector4[])values.Clone(); }
         public Vector4[] GetVectorArray(string name) { Vector4[] values; return arrays.TryGetValue(name, out values) ? values : null; }
 
@@ -180,6 +192,65 @@ namespace UnityEngine
                 packed[6][p] = new Vector4(u[0, 8], u[1, 8], u[2, 8], 1);
             }
             for (int k = 0; k < 7; ++k) arrays[ShNames[k]] = packed[k];
+        }
+    }
+
+    public enum TextureFormat { RGBAFloat = 20, RGBAHalf = 17 }
+    public enum TextureWrapMode { Repeat = 0, Clamp = 1 }
+    public enum FilterMode { Point = 0, Bilinear = 1, Trilinear = 2 }
+
+    public class Texture : Object
+    {
+        public TextureWrapMode wrapMode;
+        public FilterMode filterMode;
+    }
+
+    /// <summary>As Unity's, keeping the texel data it was given (floats for RGBAFloat, half bits for RGBAHalf).</summary>
+    public class Texture3D : Texture
+    {
+        public readonly int width, height, depth;
+        public readonly TextureFormat format;
+        public Array PixelData;
+        public int Applied;
+        public Texture3D(int width, int height, int depth, TextureFormat format, bool mipChain)
+        {
+            this.width = width; this.height = height; this.depth = depth; this.format = format;
+        }
+        public void SetPixelData<T>(T[] data, int mipLevel, int sourceDataStartIndex = 0)
+        {
+            int texel = format == TextureFormat.RGBAFloat ? 16 : 8;
+            if (mipLevel != 0 || System.Runtime.InteropServices.Marshal.SizeOf(typeof(T)) * (data.Length - sourceDataStartIndex) !=
+                texel * width * height * depth)
+                throw new ArgumentException("SetPixelData: the data does not fill the texture");
+            PixelData = (T[])data.Clone();
+        }
+        public void Apply(bool updateMipmaps) { ++Applied; }
+    }
+
+    public static class Mathf
+    {
+        /// <summary>As Unity's: IEEE binary16 bits of value, rounded to nearest even.</summary>
+        public static ushort FloatToHalf(float value)
+        {
+            uint bits = BitConverter.ToUInt32(BitConverter.GetBytes(value), 0);
+            uint sign = (bits >> 16) & 0x8000u;
+            int exponent = (int)((bits >> 23) & 0xFF) - 127 + 15;
+            uint mantissa = bits & 0x7FFFFFu;
+            if (((bits >> 23) & 0xFF) == 0xFF) return (ushort)(sign | 0x7C00u | (mantissa != 0 ? 0x200u : 0));
+            if (exponent >= 31) return (ushort)(sign | 0x7C00u);
+            if (exponent <= 0)
+            {
+                if (exponent < -10) return (ushort)sign;
+                mantissa |= 0x800000u;
+                int shift = 14 - exponent;
+                uint half = mantissa >> shift, rest = mantissa & ((1u << shift) - 1), midpoint = 1u << (shift - 1);
+                if (rest > midpoint || (rest == midpoint && (half & 1) != 0)) ++half;
+                return (ushort)(sign | half);
+            }
+            uint h = sign | ((uint)exponent << 10) | (mantissa >> 13);
+            uint r = mantissa & 0x1FFFu;
+            if (r > 0x1000u || (r == 0x1000u && (h & 1) != 0)) ++h;
+            return (ushort)h;
         }
     }
 
