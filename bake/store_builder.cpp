@@ -15,6 +15,7 @@
 #include "core/position_quantization.h"
 #include "core/start_grid.h"
 #include "core/store_format.h"
+#include "core/store_rebuild.h"
 
 #include <Eigen/Geometry>
 
@@ -224,6 +225,28 @@ void store_occlusion(const BuildSettings& settings, size_t count, StoreData& dat
                     : uint8_t(255);
 }
 
+// The rebuilt layout keeps no cells: the loader rebuilds them from the probes within its bounds
+// (core/store_rebuild.h), which a set with far more cells than probes exceeds, and must get exactly
+// these; checked here so that every blob of that layout the builder writes loads.
+void require_rebuildable(const StoreData& data) {
+    const std::string use_compact = "; build it with the compact layout";
+    if (data.cell_count() > kMaxRebuiltCellsPerProbe * data.probe_count() + kRebuiltCellSlack)
+        throw Error(Status::invalid_argument, "the probes make " + std::to_string(data.cell_count()) + " cells for " +
+                                                  std::to_string(data.probe_count()) + " probes, more than the rebuilt layout's " +
+                                                  std::to_string(kMaxRebuiltCellsPerProbe) + " a probe" + use_compact);
+    RebuiltCells r;
+    try {
+        r = rebuild_cells(data.positions.data(), data.probe_count(), data.dimension, data.axis,
+                          !(data.flags & kFlagNoExtrapolation), data.bounds_min, data.bounds_max, data.grid,
+                          rebuilt_cell_budget(data.cell_count()));
+    } catch (const Error& e) {
+        throw Error(Status::invalid_argument, std::string("the cells cannot be rebuilt within the loader's bounds (") +
+                                                  e.what() + ")" + use_compact);
+    }
+    if (r.cell_vertices != data.cell_vertices || r.cell_neighbours != data.cell_neighbours || r.grid_cells != data.grid_cells)
+        throw Error(Status::internal, "the rebuilt cells differ from the stored ones" + use_compact);
+}
+
 }  // namespace
 
 StoreData build_store_data(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
@@ -410,6 +433,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     }
     settings.progress.report(0.9f, "grid");
     build_start_grid(data);
+    if (data.layout == kLayoutRebuilt) require_rebuildable(data);
     settings.progress.report(1.0f, "done");
     return data;
 }

@@ -56,6 +56,15 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
         settings.sh_encoding = tetprobe::ShEncoding(options->sh_encoding);
     }
     if (TP_OPTION_FIELD(options, quantize_positions)) settings.quantize_positions = options->quantize_positions != 0;
+    if (TP_OPTION_FIELD(options, layout) && options->layout != TP_LAYOUT_FAST) {
+        if (options->layout >= tetprobe::kLayoutCount)
+            throw tetprobe::Error(tetprobe::Status::invalid_argument,
+                                  "options->layout " + std::to_string(options->layout) + " is not a TP_LAYOUT_* value");
+        if ((options->flags & TP_BUILD_COMPACT) && options->layout != TP_LAYOUT_COMPACT)
+            throw tetprobe::Error(tetprobe::Status::invalid_argument,
+                                  "TP_BUILD_COMPACT asks for the compact layout, options->layout for another");
+        settings.layout = tetprobe::StoreLayout(options->layout);
+    }
     return settings;
 }
 

@@ -117,6 +117,17 @@ typedef struct tp_store tp_store;
 #define TP_SH_ENCODING_HALF_L1 2u
 #define TP_SH_ENCODING_UNORM8_L1 3u
 
+/** How a store keeps its cells (tp_build_options.layout, tp_store_info.layout). FAST (the default):
+    vertices and neighbours per cell, SH padded; COMPACT: vertices only, neighbours rebuilt when loaded
+    (also TP_BUILD_COMPACT); REBUILT: no cells, no neighbours and no start grid: the loader rebuilds them
+    from the positions (exact Delaunay in the run-time library, the cells every other layout stores, index
+    for index), which costs time at load (docs/store_format.md). A set with more than 16 cells a probe
+    cannot be built in REBUILT (TP_ERROR_INVALID_ARGUMENT: use COMPACT). Queries answer the same in every
+    layout. */
+#define TP_LAYOUT_FAST 0u
+#define TP_LAYOUT_COMPACT 1u
+#define TP_LAYOUT_REBUILT 2u
+
 typedef struct tp_build_options {
     uint32_t struct_size;
     uint32_t flags;              /* TP_BUILD_* */
@@ -147,6 +158,8 @@ typedef struct tp_build_options {
         (tp_store_info.position_step) of its input on each axis. Probes that quantise to the same point
         are merged (tp_store_info.merged_probes). */
     uint32_t quantize_positions;
+    /** TP_LAYOUT_* (default FAST). TP_BUILD_COMPACT in flags asks for COMPACT, and contradicts REBUILT. */
+    uint32_t layout;
 } tp_build_options;
 
 /** Fills defaults and struct_size. */
@@ -203,13 +216,6 @@ TP_API tp_status tp_store_blob(const tp_store* store, const void** out_data, siz
 
 /** Releases a store (NULL is allowed). */
 TP_API tp_status tp_store_release(tp_store* store);
-
-/** How a store keeps its cells (tp_store_info.layout). FAST: vertices and neighbours per cell; COMPACT:
-    vertices only (TP_BUILD_COMPACT); REBUILT: no cells, rebuilt from the positions when loaded
-    (reserved: this library refuses such a blob with TP_ERROR_UNSUPPORTED). */
-#define TP_LAYOUT_FAST 0u
-#define TP_LAYOUT_COMPACT 1u
-#define TP_LAYOUT_REBUILT 2u
 
 /** The parts of a blob (indices of tp_store_info.section_bytes): the header with its section table,
     each section, and the alignment padding between them; together they make tp_store_info.bytes. */

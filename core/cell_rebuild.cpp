@@ -15,7 +15,8 @@
 
 namespace tetprobe {
 
-SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis) {
+SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
+                        uint64_t max_cells) {
     if (axis > 2 || ((dimension == 0 || dimension == 3) && axis != 0))
         throw Error(Status::invalid_argument, "axis " + std::to_string(axis) + " does not fit dimension " + std::to_string(dimension));
     switch (dimension) {
@@ -28,7 +29,7 @@ SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t d
         }
         case 1: return line_segments(positions, probe_count, axis);
         case 2: return delaunay_cells_2d(positions, probe_count, axis);
-        case 3: return delaunay_cells_3d(positions, probe_count);
+        case 3: return delaunay_cells_3d(positions, probe_count, max_cells);
         default: throw Error(Status::invalid_argument, "dimension must be 0 to 3");
     }
 }
@@ -52,7 +53,7 @@ void store_cells(SimplexMesh mesh, StoreData& data) {
 
 RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
                            bool extrapolate, const float bounds_min[3], const float bounds_max[3],
-                           const uint32_t grid[3]) {
+                           const uint32_t grid[3], uint64_t max_cells) {
     for (int a = 0; a < 3; ++a)
         if (!(std::isfinite(bounds_min[a]) && std::isfinite(bounds_max[a]) && bounds_min[a] <= bounds_max[a]))
             throw Error(Status::invalid_argument, "the bounds are not finite and ordered");
@@ -66,7 +67,7 @@ RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_
         data.bounds_max[a] = bounds_max[a];
         data.grid[a] = grid[a];
     }
-    store_cells(inner_cells(positions, probe_count, dimension, axis), data);
+    store_cells(inner_cells(positions, probe_count, dimension, axis, max_cells), data);
     order_cells_for_locality(data);
     fill_start_grid(data);
     RebuiltCells out;

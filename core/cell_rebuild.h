@@ -10,6 +10,7 @@
 // the stored cells index for index.
 #pragma once
 
+#include "core/delaunay3d.h"
 #include "core/simplex_mesh.h"
 #include "core/store_data.h"
 
@@ -22,7 +23,10 @@ namespace tetprobe {
 // dimension (0..3) and axis (store_format.h). Throws Error(Status::degenerate) when the probes do not
 // span that dimension, and Error(Status::invalid_argument) for two probes a cell could not tell apart
 // or an axis that does not fit the dimension.
-SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis);
+// max_cells bounds a tetrahedralization's live cells (delaunay3d.h); a line's or flat set's cells are
+// linear in the probes.
+SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
+                        uint64_t max_cells = kUnlimitedCells);
 
 // Step 2: fills data.inner_cell_count, cell_vertices and cell_neighbours from mesh (of data.dimension,
 // numbering data's probes), with outer cells unless data.flags has kFlagNoExtrapolation.
@@ -42,10 +46,10 @@ struct RebuiltCells {
 // layouts that keep them (tests/unit/test_cell_rebuild.cpp proves it on every hard-case family), on
 // any platform: every step is exact predicates, integers and plain IEEE arithmetic. Allocates (like
 // any Delaunay, adversarial sets such as probes on two skew lines make quadratically many cells: a
-// loader of untrusted blobs bounds probe_count); throws Error as inner_cells and fill_start_grid do
+// loader of untrusted blobs passes max_cells); throws Error as inner_cells and fill_start_grid do
 // and for bounds that are not finite and ordered, which a loader reports as an invalid blob.
 RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
                            bool extrapolate, const float bounds_min[3], const float bounds_max[3],
-                           const uint32_t grid[3]);
+                           const uint32_t grid[3], uint64_t max_cells = kUnlimitedCells);
 
 }  // namespace tetprobe

@@ -155,18 +155,18 @@ private:
 #endif
 #endif
 
-SimplexMesh tetrahedralize(const float* positions, uint32_t count, const std::vector<uint32_t>& order) {
+SimplexMesh tetrahedralize(const float* positions, uint32_t count, const std::vector<uint32_t>& order, uint64_t max_cells) {
 #ifdef TETPROBE_X86_64
-    if (cpu_has_avx2() && !std::getenv("TP_NO_AVX2")) return Avx2Tetrahedralization(positions, count).run(order);
+    if (cpu_has_avx2() && !std::getenv("TP_NO_AVX2")) return Avx2Tetrahedralization(positions, count, max_cells).run(order);
 #endif
-    return PortableTetrahedralization(positions, count).run(order);
+    return PortableTetrahedralization(positions, count, max_cells).run(order);
 }
 
 
 }  // namespace
 
-SimplexMesh delaunay_cells_3d(const float* positions, uint32_t count) {
-    return tetrahedralize(positions, count, insertion_order(count));
+SimplexMesh delaunay_cells_3d(const float* positions, uint32_t count, uint64_t max_cells) {
+    return tetrahedralize(positions, count, insertion_order(count), max_cells);
 }
 
 SimplexMesh delaunay_cells_3d(const float* positions, uint32_t count, const std::vector<uint32_t>& order) {
@@ -175,7 +175,7 @@ SimplexMesh delaunay_cells_3d(const float* positions, uint32_t count, const std:
         if (i >= count || seen[i]) throw Error(Status::invalid_argument, "the insertion order names every point once");
         seen[i] = 1;
     }
-    return tetrahedralize(positions, count, order);
+    return tetrahedralize(positions, count, order, kUnlimitedCells);
 }
 
 }  // namespace tetprobe

@@ -19,8 +19,10 @@ namespace tetprobe {
 // dimension-3 mesh of positively oriented cells in canonical form (canonical_cells.h), neighbours
 // kNone32 across hull facets; the cells' order is unspecified (the store orders them afterwards).
 // Throws Error(Status::degenerate) for fewer than 4 points or a set without volume, and
-// Error(Status::invalid_argument) for two equal points.
-SimplexMesh delaunay_cells_3d(const float* positions, uint32_t count);
+// Error(Status::invalid_argument) for two equal points or, so that an untrusted set's work is bounded,
+// when more than max_cells cells (those outside the hull included) would be alive at once.
+constexpr uint64_t kUnlimitedCells = ~uint64_t(0);
+SimplexMesh delaunay_cells_3d(const float* positions, uint32_t count, uint64_t max_cells = kUnlimitedCells);
 
 // The same, inserting the points in the given order (a permutation of 0..count-1) instead of the
 // function's own: the tessellation does not depend on it (the tests check that it does not).

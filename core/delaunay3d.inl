@@ -5,7 +5,8 @@
 // (tetrahedron_orientations.h). The filters only decide faster: every sign is exact either way.
 class TP_TETRAHEDRALIZATION {
 public:
-    TP_TETRAHEDRALIZATION(const float* positions, uint32_t count) : positions_(positions), count_(count) {
+    TP_TETRAHEDRALIZATION(const float* positions, uint32_t count, uint64_t max_cells)
+        : positions_(positions), count_(count), max_cells_(max_cells < (uint64_t(1) << 30) ? max_cells : uint64_t(1) << 30) {
         // Each point padded to 16 bytes, as the kernels read it.
         padded_.assign(size_t(count) * 4 + 4, 0.0f);
         for (size_t i = 0; i < count; ++i) std::copy_n(positions + 3 * i, 3, &padded_[4 * i]);
@@ -40,7 +41,8 @@ private:
             tets_[t].mark = 0;
             return t;
         }
-        if (tets_.size() >= (size_t(1) << 30)) throw Error(Status::invalid_argument, "too many cells to tetrahedralize");
+        if (tets_.size() >= max_cells_)
+            throw Error(Status::invalid_argument, "more than " + std::to_string(max_cells_) + " cells at once");
         tets_.push_back(Tet{});
         return uint32_t(tets_.size() - 1);
     }
@@ -308,6 +310,7 @@ private:
 
     const float* positions_;
     uint32_t count_;
+    uint64_t max_cells_;  // live cells (those outside the hull included) at any time
 
     std::vector<Tet> tets_;
     std::vector<uint32_t> free_;

@@ -10,6 +10,7 @@
 #include "core/sh_encoding.h"
 #include "core/store_impl.h"
 #include "core/store_layout.h"
+#include "core/store_rebuild.h"
 #include "core/store_validation.h"
 #include "core/tetrahedron_orientations.h"
 
@@ -144,7 +145,6 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
         else
             invert_probe_source<uint32_t>(s);
     }
-    s.grid_cells = section(kSectionGrid);
     if (h.flags & kFlagOcclusion) {
         s.occlusion_lights = h.occlusion_lights;
         s.occlusion = section(kSectionOcclusion);
@@ -153,10 +153,15 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
         s.leak_offsets = reinterpret_cast<const uint32_t*>(section(kSectionLeakOffsets));
         s.leak_edges = reinterpret_cast<const LeakEdge*>(section(kSectionLeakEdges));
     }
-    if (s.index32)
-        set_cell_records<uint32_t>(s, section(kSectionCells));
-    else
-        set_cell_records<uint16_t>(s, section(kSectionCells));
+    if (h.layout == kLayoutRebuilt) {
+        rebuild_store_cells(s);  // cells, neighbours and start grid from the probes (store_rebuild.h)
+    } else {
+        s.grid_cells = section(kSectionGrid);
+        if (s.index32)
+            set_cell_records<uint32_t>(s, section(kSectionCells));
+        else
+            set_cell_records<uint16_t>(s, section(kSectionCells));
+    }
     validate_cell_records(s);
     decode_normals(s, section(kSectionNormals));
     if (s.leak_offsets) mark_blocked_cells(s);

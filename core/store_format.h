@@ -43,12 +43,13 @@
 //     with 32-bit: what one walk step reads, in one cache line); SH records padded (see below).
 //   kLayoutCompact: per cell vertices[4] only; neighbours are rebuilt when the blob is loaded
 //     (core/cell_adjacency.h). SH records packed.
-//   kLayoutRebuilt (reserved; this library refuses it with Status::unsupported): no cells and no grid
-//     are stored (both sections empty); the loader rebuilds them from the stored positions: the inner
-//     cells are the Delaunay tessellation of the decoded positions (TetGen's, ties broken as the
-//     builder breaks them), the outer cells those of its hull, in the builder's cell order, with the
-//     header's cell_count and inner_cell_count (a rebuild that disagrees refuses the blob), the grid
-//     of header.grid cells. Normals are stored as in the other layouts. SH records packed.
+//   kLayoutRebuilt: no cells and no grid are stored (both sections empty); the loader rebuilds them
+//     from the decoded positions (core/store_rebuild.h, core/cell_rebuild.h): the inner cells are the
+//     exact Delaunay tessellation (TetGen's, ties broken as the builder breaks them), the outer cells
+//     those of its hull, in the builder's cell order, with the header's cell_count and
+//     inner_cell_count (a rebuild that disagrees refuses the blob), the grid of header.grid cells.
+//     cell_count <= 16 probe_count + 64 and grid cells <= kMaxStartGridCells (the rebuild's work is
+//     bounded by the header). Normals are stored as in the other layouts. SH records packed.
 // - an outer cell sweeps its facet along the probes' normals: vertex k at parameter t >= 0 sits at
 //   position_k + t * normal_k, and the cell holds p where the moved facet passes through p.
 // - normals: one per hull probe (a probe of some outer cell), in increasing probe order,
@@ -103,7 +104,7 @@ constexpr uint32_t kKnownFlags = kFlagNoExtrapolation | kFlagIndex32 | kFlagOccl
 enum StoreLayout : uint32_t {
     kLayoutFast = 0,     // vertices and neighbours per cell, SH records padded
     kLayoutCompact = 1,  // vertices per cell (neighbours rebuilt on load), SH packed
-    kLayoutRebuilt = 2,  // reserved: cells and grid rebuilt on load (refused by this library)
+    kLayoutRebuilt = 2,  // no cells, neighbours or grid: all rebuilt on load
     kLayoutCount
 };
 

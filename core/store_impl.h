@@ -51,7 +51,8 @@ struct Store::Impl {
     const void* input_remap = nullptr;       // per input probe (the blob's, or probe_source inverted)
     const void* cells = nullptr;             // CellRecord<Index> per cell (the blob's, or rebuilt)
     const void* grid_cells = nullptr;        // grid[0]*grid[1]*grid[2] indices
-    AlignedBytes rebuilt_cells;              // compact layout: the cell records rebuilt on load
+    AlignedBytes rebuilt_cells;              // compact and rebuilt layouts: the cell records rebuilt on load
+    AlignedBytes rebuilt_grid;               // rebuilt layout: the start grid rebuilt on load
     AlignedBytes decoded_positions;          // quantised positions as floats
     AlignedBytes decoded_normals;            // the hull probes' normals, per probe
     AlignedBytes inverted_remap;             // input_remap when the blob stores none

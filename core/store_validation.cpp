@@ -8,7 +8,9 @@
 #include "core/plane_projection.h"
 #include "core/sh_encoding.h"
 #include "core/store_format.h"
+#include "core/start_grid.h"
 #include "core/store_layout.h"
+#include "core/store_rebuild.h"
 
 #include <cmath>
 #include <cstdio>
@@ -101,6 +103,16 @@ void check_header(const StoreHeader& h, size_t size) {
     if (h.hull_probe_count > h.probe_count) reject("hull_probe_count exceeds probe_count");
     if (h.cell_count == h.inner_cell_count && h.hull_probe_count != 0)
         reject("hull_probe_count is " + std::to_string(h.hull_probe_count) + " in a store without outer cells");
+    if (h.layout == kLayoutRebuilt) {
+        // What the loader will rebuild, bounded before it starts (store_rebuild.h): the cells the probes
+        // may make, and the start grid, which no section's size bounds in this layout.
+        if (uint64_t(h.cell_count) > kMaxRebuiltCellsPerProbe * h.probe_count + kRebuiltCellSlack)
+            reject("cell_count " + std::to_string(h.cell_count) + " exceeds the rebuilt layout's " +
+                   std::to_string(kMaxRebuiltCellsPerProbe) + " cells a probe (+" + std::to_string(kRebuiltCellSlack) + ")");
+        if (h.grid[0] > kMaxStartGridCells || h.grid[1] > kMaxStartGridCells || h.grid[2] > kMaxStartGridCells ||
+            uint64_t(h.grid[0]) * h.grid[1] * h.grid[2] > kMaxStartGridCells)
+            reject("the start grid has more than " + std::to_string(kMaxStartGridCells) + " cells");
+    }
     const uint32_t max_count = (h.flags & kFlagIndex32) ? kOuter32 - 1 : kMaxIndex16;
     if (h.probe_count > max_count || h.cell_count > max_count)
         reject("probe_count or cell_count does not fit the index width");
@@ -339,9 +351,6 @@ void validate_store_blob(const uint8_t* data, size_t size) {
     const uint64_t stored = h.checksum;
     const uint64_t computed = store_checksum(data, size);
     if (stored != computed) reject("checksum mismatch (the blob is corrupt)");
-    if (h.layout == kLayoutRebuilt)
-        throw Error(Status::unsupported, "store blob of the rebuilt layout (cells rebuilt when loaded): this library "
-                                         "cannot rebuild cells yet; build the store with the fast or compact layout");
     check_positions(data, h, table);
     check_sh(data, h, table);
     check_maps(data, h, table);

@@ -14,9 +14,10 @@ namespace tetprobe {
 // and grid index, and (fast layout) every neighbour index against its count; and refuses what the
 // builder never writes: an origin or bounds beyond its coordinate limits (coordinate_limits.h), float
 // positions whose bounding box is not the bounds, float normals with a component outside [-1, 1].
-// Throws Error(Status::invalid_blob) naming the first problem found, Error(Status::version) for a blob
-// of another format version (formats 2 to 4 included), or Error(Status::unsupported) for a well-formed
-// blob of the rebuilt layout. Reads nothing outside [data, data + size).
+// In the rebuilt layout (no cells or grid stored), the header's cell count and grid dimensions are
+// bounded (store_rebuild.h) so that the loader's rebuild is. Throws Error(Status::invalid_blob) naming
+// the first problem found, or Error(Status::version) for a blob of another format version (formats 2 to
+// 4 included). Reads nothing outside [data, data + size).
 void validate_store_blob(const uint8_t* data, size_t size);
 
 // Validates the cell records of a loaded store (the blob's, or those rebuilt from a compact blob):

@@ -32,6 +32,7 @@ namespace TetProbe
         // Format 5.
         public uint sh_encoding;
         public uint quantize_positions;
+        public uint layout;
     }
 
     [StructLayout(LayoutKind.Sequential)]

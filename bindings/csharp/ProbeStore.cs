@@ -21,7 +21,7 @@ namespace TetProbe
         public bool Compact;
         public long Bytes;
         public Vector3 BoundsMin, BoundsMax;
-        /// <summary>How the cells are kept (Fast, Compact; Rebuilt is refused by this library).</summary>
+        /// <summary>How the cells are kept (BuildOptions.Layout).</summary>
         public StoreLayout Layout;
         /// <summary>How the SH are kept (BuildOptions.ShEncoding).</summary>
         public ShEncoding ShEncoding;
@@ -90,6 +90,10 @@ namespace TetProbe
         /// <summary>Positions in 16 bits per axis over the probes' bounds, quantised before the tessellation (so a query at a
         /// stored probe still weighs it exactly 1); probes that quantise to one point merge.</summary>
         public bool QuantizePositions;
+        /// <summary>How the cells are kept: Fast (the default), Compact (as Compact = true), or Rebuilt (no cells stored:
+        /// rebuilt from the positions when loaded, the same cells and answers; the smallest blob). Compact = true
+        /// with Rebuilt is refused.</summary>
+        public StoreLayout Layout = StoreLayout.Fast;
         /// <summary>Leak control (null = none): probe pairs of a cell that cannot see each other in this scene are
         /// stored, and queries weigh down the probe behind the wall. Full library only.</summary>
         public Scene Scene;
@@ -113,6 +117,7 @@ namespace TetProbe
             options.flat_tolerance = FlatTolerance;
             options.sh_encoding = (uint)ShEncoding;
             options.quantize_positions = QuantizePositions ? 1u : 0u;
+            options.layout = (uint)Layout;
             return options;
         }
     }

@@ -21,7 +21,7 @@ namespace TetProbe
     {
         Fast = 0,
         Compact = 1,
-        /// <summary>Cells rebuilt from the positions when loaded (refused by this library).</summary>
+        /// <summary>No cells stored: rebuilt from the positions when loaded.</summary>
         Rebuilt = 2,
     }
 

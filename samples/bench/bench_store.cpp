@@ -62,10 +62,12 @@ struct StoreDeleter {
 using StorePtr = std::unique_ptr<tp_store, StoreDeleter>;
 
 StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, uint32_t flags,
-                     uint32_t sh_encoding = TP_SH_ENCODING_HALF, bool quantize_positions = false) {
+                     uint32_t sh_encoding = TP_SH_ENCODING_HALF, bool quantize_positions = false,
+                     uint32_t layout = TP_LAYOUT_FAST) {
     tp_build_options options;
     tp_build_options_init(&options);
     options.flags = flags;
+    options.layout = layout;
     options.sh_encoding = sh_encoding;
     options.quantize_positions = quantize_positions ? 1u : 0u;
     tp_store* store = nullptr;
@@ -316,7 +318,8 @@ struct SizeResult {
     double build_ms = 0, build_compact_ms = 0, tetgen_ms = 0;
     // Format 5: every SH encoding x position encoding in both layouts ([layout][encoding][quantised]), and
     // the coherent single query on the fast layout in unorm8 and on the smallest L2 store.
-    tp_store_info encoded[2][4][2] = {};
+    tp_store_info encoded[3][4][2] = {};  // [TP_LAYOUT_*][TP_SH_ENCODING_*][quantised]
+    double load_rebuilt_ms = 0;  // tp_store_load of the smallest L2 store's blob (rebuilt layout): its rebuild
     double single_unorm8 = 0, single_smallest = 0;
     double floor_encoded[4] = {};  // the blend-only floor with core's kernel of each SH encoding (fast layout)
     double rebuild_ms = 0;  // core's rebuild of cells, neighbours and start grid from the stored probes
@@ -402,10 +405,10 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
 
     r->single = time_coherent_single(fast.get(), paths, sink);
     r->single_compact = time_coherent_single(compact.get(), paths, sink);
-    for (int layout = 0; layout < 2; ++layout)
+    for (uint32_t layout = 0; layout < 3; ++layout)
         for (uint32_t encoding = 0; encoding < 4; ++encoding)
             for (int quantized = 0; quantized < 2; ++quantized) {
-                const StorePtr store = build_store(positions, sh, layout ? TP_BUILD_COMPACT : 0u, encoding, quantized != 0);
+                const StorePtr store = build_store(positions, sh, 0u, encoding, quantized != 0, layout);
                 if (!store) return false;
                 r->encoded[layout][encoding][quantized] = store_info(store.get());
                 BlobSh records;
@@ -413,8 +416,22 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
                     r->floor_encoded[encoding] = time_blend_floor_records(store.get(), records, paths, sink);
                 if (layout == 0 && encoding == TP_SH_ENCODING_UNORM8 && !quantized)
                     r->single_unorm8 = time_coherent_single(store.get(), paths, sink);
-                if (layout == 1 && encoding == TP_SH_ENCODING_UNORM8 && quantized)
+                if (layout == TP_LAYOUT_REBUILT && encoding == TP_SH_ENCODING_UNORM8 && quantized) {
                     r->single_smallest = time_coherent_single(store.get(), paths, sink);
+                    const void* blob = nullptr;
+                    size_t size = 0;
+                    tp_store_blob(store.get(), &blob, &size);
+                    r->load_rebuilt_ms = 1e3 * median_seconds(
+                                                   [&] {
+                                                       tp_store* loaded = nullptr;
+                                                       const Clock::time_point t0 = Clock::now();
+                                                       const tp_status status = tp_store_load(blob, size, &loaded);
+                                                       const double seconds = seconds_since(t0);
+                                                       tp_store_release(loaded);
+                                                       return status == TP_OK ? seconds : NAN;
+                                                   },
+                                                   kBuildRepetitions);
+                }
             }
     r->batch = time_batch(fast.get(), paths, 1, sink);
     r->batch_jobs2 = time_batch_two_jobs(fast.get(), paths, sink);
@@ -504,7 +521,7 @@ int run_store_bench(int argc, char** argv) {
     print_row("tetprobe coherent single, `tp_store_interpolate`", r, &SizeResult::single);
     print_row("tetprobe coherent single, compact layout", r, &SizeResult::single_compact);
     print_row("tetprobe coherent single, fast layout, unorm8 SH", r, &SizeResult::single_unorm8);
-    print_row("tetprobe coherent single, compact layout, unorm8 SH, quantised positions (smallest L2 store)", r,
+    print_row("tetprobe coherent single, rebuilt layout, unorm8 SH, quantised positions (smallest L2 store)", r,
               &SizeResult::single_smallest);
     print_row("tetprobe batch, 1,024 objects per frame, 1 thread", r, &SizeResult::batch);
     print_row("tetprobe batch, 2 std::threads x 512 objects per frame (wall time / queries)", r,
@@ -584,10 +601,11 @@ int run_store_bench(int argc, char** argv) {
     std::printf("| layout | SH | positions | %zu probes | %zu probes | %zu probes |\n", kProbeCounts[0], kProbeCounts[1],
                 kProbeCounts[2]);
     std::printf("| --- | --- | --- | ---: | ---: | ---: |\n");
-    for (int layout = 0; layout < 2; ++layout)
+    const char* const layout_names[3] = {"fast", "compact", "rebuilt"};
+    for (int layout = 0; layout < 3; ++layout)
         for (int encoding = 0; encoding < 4; ++encoding)
             for (int quantized = 0; quantized < 2; ++quantized) {
-                std::printf("| %s | %s | %s |", layout ? "compact" : "fast", kEncodingNames[encoding],
+                std::printf("| %s | %s | %s |", layout_names[layout], kEncodingNames[encoding],
                             quantized ? "16-bit" : "float32");
                 for (int i = 0; i < kSizes; ++i) {
                     const tp_store_info& info = r[i].encoded[layout][encoding][quantized];
@@ -595,37 +613,34 @@ int run_store_bench(int argc, char** argv) {
                 }
                 std::printf("\n");
             }
-    // The smallest L2 store at 1.5k probes, part by part, and what is left for the cells.
+    // The smallest L2 store at 1.5k probes, part by part.
     {
-        const tp_store_info& small = r[0].encoded[1][TP_SH_ENCODING_UNORM8][1];
-        std::printf("\nThe smallest L2 store (compact, unorm8, 16-bit positions) of %zu random probes, %llu bytes:\n\n",
-                    r[0].probes, (unsigned long long)small.bytes);
+        const tp_store_info& small = r[0].encoded[TP_LAYOUT_REBUILT][TP_SH_ENCODING_UNORM8][1];
+        std::printf("\nThe smallest L2 store (rebuilt, unorm8, 16-bit positions) of %zu random probes, %llu bytes "
+                    "(%.1f a probe):\n\n",
+                    r[0].probes, (unsigned long long)small.bytes, double(small.bytes) / small.probes);
         std::printf("| part | bytes | bytes/probe |\n| --- | ---: | ---: |\n");
         for (uint32_t s = 0; s < TP_STORE_SECTION_COUNT; ++s)
             if (small.section_bytes[s])
                 std::printf("| %s | %llu | %.2f |\n", kSectionNames[s], (unsigned long long)small.section_bytes[s],
                             double(small.section_bytes[s]) / small.probes);
-        const double goal = 48.0 * double(small.probes);
-        const double outside_cells = double(small.bytes - small.section_bytes[TP_STORE_SECTION_CELLS]);
-        const double outside_cells_and_grid = outside_cells - double(small.section_bytes[TP_STORE_SECTION_GRID]);
-        std::printf("\nEverything but the cells: %.0f bytes (%.1f a probe); without the start grid too (rebuilt at load "
-                    "with the cells): %.0f (%.1f a probe). Left for connectivity under the goal of 48 bytes a probe "
-                    "(%.0f bytes): %.0f bytes with the grid stored (%.2f a cell of %u), %.0f with it rebuilt (%.2f a "
-                    "cell).\n\n",
-                    outside_cells, outside_cells / small.probes, outside_cells_and_grid,
-                    outside_cells_and_grid / small.probes, goal, goal - outside_cells, (goal - outside_cells) / small.cells,
-                    small.cells, goal - outside_cells_and_grid, (goal - outside_cells_and_grid) / small.cells);
+        std::printf("\n");
     }
     std::printf("### Rebuilding cells at load\n\n");
-    std::printf("| probes | rebuild ms | rebuild ms per 10k probes | TetGen tetrahedralize(\"Qz\") ms | rebuild / TetGen |\n");
-    std::printf("| ---: | ---: | ---: | ---: | ---: |\n");
+    std::printf("| probes | rebuild ms | rebuild ms per 10k probes | TetGen tetrahedralize(\"Qz\") ms | rebuild / TetGen | "
+                "load of the rebuilt layout ms | load per 10k probes | load / TetGen |\n");
+    std::printf("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
     for (int i = 0; i < kSizes; ++i)
-        std::printf("| %zu | %s | %s | %.1f | %s |\n", r[i].probes, fmt("%.1f", r[i].rebuild_ms).c_str(),
+        std::printf("| %zu | %s | %s | %.1f | %s | %s | %s | %s |\n", r[i].probes, fmt("%.1f", r[i].rebuild_ms).c_str(),
                     fmt("%.1f", r[i].rebuild_ms * 1e4 / r[i].probes).c_str(), r[i].tetgen_ms,
-                    fmt("%.2fx", r[i].rebuild_ms / r[i].tetgen_ms).c_str());
+                    fmt("%.2fx", r[i].rebuild_ms / r[i].tetgen_ms).c_str(), fmt("%.1f", r[i].load_rebuilt_ms).c_str(),
+                    fmt("%.1f", r[i].load_rebuilt_ms * 1e4 / r[i].probes).c_str(),
+                    fmt("%.2fx", r[i].load_rebuilt_ms / r[i].tetgen_ms).c_str());
     std::printf("\nrebuild: core's `rebuild_cells` from the stored probes (exact Delaunay, hull and outer cells, "
                 "ordering, neighbours, start grid), which gives the stored cells index for index (a run that does not "
-                "prints -); TetGen: its Delaunay call alone on the same points.\n\n");
+                "prints -); load: `tp_store_load` of the smallest L2 store's blob (rebuilt layout, unorm8, 16-bit "
+                "positions): validation, decoding, the rebuild and its checks; TetGen: its Delaunay call alone on the "
+                "same points.\n\n");
 
     std::printf("### Headline ratios (this run; targets of issue 7)\n\n");
     std::printf("| ratio | %zu probes | %zu probes | %zu probes | target | |\n", kProbeCounts[0], kProbeCounts[1],
@@ -672,20 +687,19 @@ int run_store_bench(int argc, char** argv) {
                     compact_kb, met ? "met" : "missed");
     }
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].single_smallest / r[i].single;
-    print_ratio("smallest L2 store / fast layout, coherent single (issue 17, for the rebuilt layout)", v, "%.2fx",
+    print_ratio("smallest L2 store (rebuilt layout) / fast layout, coherent single (issue 17)", v, "%.2fx",
                 "<= 1.3x", true, 1.3, all);
     {
-        const tp_store_info& small = r[0].encoded[1][TP_SH_ENCODING_UNORM8][1];
-        const double kept = double(small.bytes - small.section_bytes[TP_STORE_SECTION_CELLS] -
-                                   small.section_bytes[TP_STORE_SECTION_GRID]);
-        std::printf("| smallest L2 store at 1.5k without cells and grid (the rebuilt layout's floor), bytes | %.0f | - | - | "
-                    "<= 72,000 with the cells rebuilt at load | floor %s (cells still stored) |\n", kept,
-                    kept <= 72000 ? "within" : "over");
+        const tp_store_info& small = r[0].encoded[TP_LAYOUT_REBUILT][TP_SH_ENCODING_UNORM8][1];
+        std::printf("| smallest L2 store at 1.5k (rebuilt, unorm8, 16-bit positions), bytes (issue 17) | %llu | - | - | "
+                    "<= 72,000 | %s |\n", (unsigned long long)small.bytes, small.bytes <= 72000 ? "met" : "missed");
     }
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].build_ms / r[i].tetgen_ms;
     print_ratio("build / TetGen", v, "%.2fx", "<= 1.5x at 10k and 65k", true, 1.5, large);
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].rebuild_ms * 1e4 / r[i].probes;
     print_ratio("rebuild at load, ms per 10k probes (issue 17)", v, "%.1f", "<= 20", true, 20.0, all);
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].load_rebuilt_ms * 1e4 / r[i].probes;
+    print_ratio("load of the rebuilt layout, ms per 10k probes (issue 17)", v, "%.1f", "<= 20", true, 20.0, all);
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].cold / r[i].single;
     print_ratio("cold / coherent", v, "%.2fx", "<= 4x at 65k", true, 4.0, last);
     for (int i = 0; i < kSizes; ++i) v[i] = 100.0 * r[i].walk_outside_cold.fallback;

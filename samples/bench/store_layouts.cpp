@@ -6,6 +6,11 @@ const std::vector<StoreLayout>& store_layouts() {
     static const std::vector<StoreLayout> layouts = {
         {"fast", "fast layout", [](tp_build_options*, const tp_scene*) {}},
         {"compact", "compact layout", [](tp_build_options* o, const tp_scene*) { o->flags |= TP_BUILD_COMPACT; }},
+        // The smallest L2 store (issue 17): the same cells as compact, SH in 8 bits, positions in 16.
+        {"smallest", "rebuilt layout, unorm8 SH, 16-bit positions",
+         [](tp_build_options* o, const tp_scene*) {
+             o->layout = TP_LAYOUT_REBUILT, o->sh_encoding = TP_SH_ENCODING_UNORM8, o->quantize_positions = 1;
+         }},
     };
     return layouts;
 }

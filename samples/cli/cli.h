@@ -41,6 +41,7 @@ struct BuildChoices {
     uint32_t flags = 0;
     uint32_t sh_encoding = TP_SH_ENCODING_HALF;
     bool quantize_positions = false;
+    uint32_t layout = TP_LAYOUT_FAST;
 };
 // scene: leak control (tp_build_options.scene), or NULL.
 StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,

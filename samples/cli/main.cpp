@@ -9,10 +9,11 @@ namespace {
 
 const char* const kUsage =
     "usage:\n"
-    "  tetprobe build PROBES.(csv|json) -o STORE [--compact] [--sh-encoding E] [--quantize-positions]\n"
+    "  tetprobe build PROBES.(csv|json) -o STORE [--layout L] [--compact] [--sh-encoding E] [--quantize-positions]\n"
     "                [--scene SCENE [--scale S] [--up AXIS]]\n"
-    "                                                probe files: docs/probe-file.md; --compact: no neighbours\n"
-    "                                                stored; E: half (default), unorm8, half_l1 or unorm8_l1;\n"
+    "                                                probe files: docs/probe-file.md; L: fast (default), compact\n"
+    "                                                (no neighbours stored; also --compact) or rebuilt (no cells\n"
+    "                                                stored); E: half (default), unorm8, half_l1 or unorm8_l1;\n"
     "                                                --quantize-positions: 16 bits per axis;\n"
     "                                                --scene: leak control (probe pairs a wall separates)\n"
     "  tetprobe info STORE [--json]\n"

@@ -10,12 +10,17 @@
 namespace cli {
 
 int command_build(const std::vector<std::string>& args) {
-    const Arguments a = parse_arguments(args, with_scene_options({"-o", "--scene", "--sh-encoding"}),
+    const Arguments a = parse_arguments(args, with_scene_options({"-o", "--scene", "--sh-encoding", "--layout"}),
                                         {"--compact", "--quantize-positions"});
     if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("build takes INPUT and -o STORE");
     if (!a.has("--scene") && (a.has("--scale") || a.has("--up"))) throw UsageError("--scale and --up go with --scene");
     BuildChoices choices;
-    choices.flags = a.has("--compact") ? TP_BUILD_COMPACT : 0u;
+    const std::string layout = a.value("--layout", a.has("--compact") ? "compact" : "fast");
+    if (layout == "fast" || layout == "compact" || layout == "rebuilt")
+        choices.layout = layout == "fast" ? TP_LAYOUT_FAST : layout == "compact" ? TP_LAYOUT_COMPACT : TP_LAYOUT_REBUILT;
+    else
+        throw UsageError("--layout takes fast, compact or rebuilt (not '" + layout + "')");
+    if (a.has("--compact") && layout != "compact") throw UsageError("--compact is --layout compact (not '" + layout + "')");
     choices.quantize_positions = a.has("--quantize-positions");
     const std::string encoding = a.value("--sh-encoding", "half");
     if (!sh_encoding_from_name(encoding, &choices.sh_encoding))

@@ -27,6 +27,7 @@ StorePtr build_store(const std::vector<float>& positions, const std::vector<floa
     options.flags |= choices.flags;
     options.sh_encoding = choices.sh_encoding;
     options.quantize_positions = choices.quantize_positions ? 1u : 0u;
+    options.layout = choices.layout;
     options.scene = scene;
     ProgressBar bar{"build"};
     if (show_progress) {

@@ -157,6 +157,7 @@ int main(int argc, char** argv) {
     test_store_queries();
     test_store_info_and_struct_size();
     test_store_encodings_and_quantization();
+    test_store_rebuilt_layout();
     test_store_blobs_and_files();
     test_store_without_extrapolation();
     test_batch_options();

@@ -83,6 +83,7 @@ void test_store_build_errors(void);
 void test_store_build_progress(void);
 void test_store_info_and_struct_size(void);
 void test_store_encodings_and_quantization(void);
+void test_store_rebuilt_layout(void);
 void test_small_sets(void);
 void test_store_queries(void);
 void test_store_without_extrapolation(void);

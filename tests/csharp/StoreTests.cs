@@ -59,6 +59,27 @@ static class StoreTests
                                 info.SectionBytes.Sh + " of SH");
                 }
 
+        // The rebuilt layout: no cells stored, the compact layout's answers exactly.
+        Tests.Check(defaults.Layout == StoreLayout.Fast, "fast layout by default");
+        using (ProbeStore compact = ProbeStore.Build(positions, sh, new BuildOptions { Layout = StoreLayout.Compact }))
+        using (ProbeStore rebuilt = ProbeStore.Build(positions, sh, new BuildOptions { Layout = StoreLayout.Rebuilt }))
+        {
+            bool same = true;
+            for (int i = 0; i < 40; ++i)
+            {
+                var p = new Vector3(0.1f * i - 0.5f, 0.07f * i, 3 - 0.09f * i);
+                int ha = -1, hb = -1;
+                ProbeLocation a = compact.Locate(p, ref ha), b = rebuilt.Locate(p, ref hb);
+                same &= ha == hb;
+                for (int k = 0; k < 4; ++k) same &= a.Probes[k] == b.Probes[k] && a.Weights[k] == b.Weights[k];
+            }
+            Tests.Check(rebuilt.Info.Layout == StoreLayout.Rebuilt && rebuilt.Info.SectionBytes.Cells == 0 &&
+                        rebuilt.Info.Cells == compact.Info.Cells && rebuilt.Info.Bytes < compact.Info.Bytes && same,
+                        "rebuilt layout: " + rebuilt.Info.Bytes + " bytes against compact's " + compact.Info.Bytes + ", same answers");
+        }
+        Tests.Throws<TetProbeException>(() => ProbeStore.Build(positions, sh, new BuildOptions { Layout = StoreLayout.Rebuilt, Compact = true }),
+                                        "Compact with the rebuilt layout is refused", e => e.Status == TetProbeStatus.InvalidArgument);
+
         float last = -1;
         int reports = 0;
         var progress = new Reporter(f => { last = f; ++reports; });

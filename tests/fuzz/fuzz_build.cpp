@@ -1,7 +1,7 @@
 // libFuzzer target: building a store from arbitrary point sets must never crash (TetGen must never
 // see input that kills it), and every store that builds, written in the fast or the compact layout
-// (mode bit 32), in each SH encoding (the probe count mod 4), with float or quantised positions (mode
-// bit 128), must load and answer every probe's position with valid weights. Decisions are exact
+// (mode bit 32; or the rebuilt layout, below), in each SH encoding (the probe count mod 4), with float
+// or quantised positions (mode bit 128), must load and answer every probe's position with valid weights. Decisions are exact
 // orientation predicates on the stored floats, so every input probe whose survivor is stored exactly
 // at the probe's own local position (not merged from elsewhere, not moved onto a fitted plane or
 // line, not moved by quantisation) is answered by that probe alone, with weight exactly 1, on every
@@ -15,7 +15,8 @@
 // dimensions, tilted planes, lines, clusters, shells, clouds), which the remaining bytes then edit probe by probe, so that sets of
 // hundreds of probes are reached (the byte decoder alone takes 3 bytes a probe).
 // Every store that builds rebuilds its cells, neighbours and start grid from its stored probes exactly
-// (core/cell_rebuild.h), whatever ties or magnitudes the set holds.
+// (core/cell_rebuild.h), whatever ties or magnitudes the set holds; mode bit 32 with bit 2 of the probe
+// count writes the rebuilt layout (no cells stored), whose loaded cells must be the builder's.
 #include "bake/scene.h"
 #include "bake/store_builder.h"
 #include "core/cell_rebuild.h"
@@ -142,7 +143,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         for (int c = 0; c < 27; ++c) sh[p * 27 + c] = float((p * 7 + c) % 11);
 
     tetprobe::BuildSettings settings;
-    settings.layout = (mode & 32) ? tetprobe::kLayoutCompact : tetprobe::kLayoutFast;
+    // Mode bit 32: a layout without neighbours, compact or (bit 2 of the probe count) rebuilt.
+    settings.layout = !(mode & 32) ? tetprobe::kLayoutFast : (count & 4) ? tetprobe::kLayoutRebuilt : tetprobe::kLayoutCompact;
     settings.sh_encoding = tetprobe::ShEncoding(count % tetprobe::kShEncodingCount);
     settings.quantize_positions = (mode & 128) != 0;
     const bool scene_data = mode & 64;
@@ -195,7 +197,17 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         __builtin_trap();
     }
     const tetprobe::StoreHeader& h = store->header();
-    if ((h.layout == tetprobe::kLayoutCompact) != ((mode & 32) != 0) || h.sh_encoding != settings.sh_encoding ||
+    if (h.layout == tetprobe::kLayoutRebuilt) {
+        // The loader's rebuild is the builder's cells, record for record.
+        for (uint32_t c = 0; c < h.cell_count; ++c) {
+            uint32_t v[4], n[4];
+            store->cell(c, v, n);
+            if (std::memcmp(v, &d.cell_vertices[4 * size_t(c)], sizeof v) != 0 ||
+                std::memcmp(n, &d.cell_neighbours[4 * size_t(c)], sizeof n) != 0)
+                __builtin_trap();
+        }
+    }
+    if (h.layout != settings.layout || h.sh_encoding != settings.sh_encoding ||
         (h.position_encoding == tetprobe::kPositionsUnorm16) != settings.quantize_positions)
         __builtin_trap();
     // Every query succeeds with weights in [0, 1] summing to 1; a probe stored where it was given

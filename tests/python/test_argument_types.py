@@ -40,7 +40,7 @@ CALLS = {
     "Store.build": (lambda: Store.build, lambda: dict(positions=POINTS, sh=None, compact=False, extrapolate=True,
                                                       index32=False, merge_tolerance=1e-6, flat_tolerance=1e-4,
                                                       progress=None, scene=None, occlusion=None, occlusion_lights=None,
-                                                      sh_encoding="half", quantize_positions=False)),
+                                                      sh_encoding="half", quantize_positions=False, layout="fast")),
     "Store.load": (lambda: Store.load, lambda: dict(source=store().to_bytes(), max_file_bytes=1 << 30)),
     "Store.save": (lambda: store().save, lambda: dict(path="replaced by the test: a file in tmp_path")),
     "Store.probe_sh": (lambda: store().probe_sh, lambda: dict(probe=0)),
@@ -103,7 +103,7 @@ NO_ARGUMENTS = {"Store", "Scene", "Error", "Status", "Placement", "Store.to_byte
                 "Scene.close", "Scene.probes", "Scene.notes", "Scene.up", "library_version", "library_path", "tool.find_tool",
                 "tool.tool_candidates"}
 # Parameters where a string is a valid value (paths, names) or whose wrong strings are values, not types.
-STRINGS_ALLOWED = {"path", "source", "scene", "mode", "order", "window", "up", "sh_encoding"}
+STRINGS_ALLOWED = {"path", "source", "scene", "mode", "order", "window", "up", "sh_encoding", "layout"}
 
 
 class Opaque:

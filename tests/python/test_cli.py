@@ -65,6 +65,17 @@ def test_build_from_csv_then_info_and_query(tmp_path):
     assert small_info["section_bytes"]["sh"] == 40 * 15 and small_info["section_bytes"]["positions"] == 40 * 6
     extent = positions.max(axis=0).astype(np.float64) - positions.min(axis=0)
     assert all(e / 65534 <= step < 2 * e / 65534 for step, e in zip(small_info["position_step"], extent))
+    rebuilt_path = tmp_path / "rebuilt.tpb"
+    out = run("build", csv, "-o", rebuilt_path, "--layout", "rebuilt", "--sh-encoding", "unorm8", "--quantize-positions").stdout
+    assert "rebuilt layout, unorm8 SH" in out
+    expected_rebuilt = Store.build(positions, sh, layout="rebuilt", sh_encoding="unorm8", quantize_positions=True)
+    assert Store.load(str(rebuilt_path)).to_bytes() == expected_rebuilt.to_bytes()
+    rebuilt_info = json.loads(run("info", rebuilt_path, "--json").stdout)
+    assert rebuilt_info["layout"] == "rebuilt" and rebuilt_info["section_bytes"]["cells"] == 0
+    assert rebuilt_info["cells"] == info["cells"]
+    for wrong in (["--layout", "tiny"], ["--compact", "--layout", "rebuilt"]):
+        refused = run("build", csv, "-o", tmp_path / "no.tpb", *wrong, ok=False)
+        assert refused.returncode == 2 and "--layout" in refused.stderr + refused.stdout
     refused = run("build", csv, "-o", tmp_path / "no.tpb", "--sh-encoding", "float8", ok=False)
     assert refused.returncode == 2 and "--sh-encoding" in refused.stderr and not (tmp_path / "no.tpb").exists()
 

@@ -388,6 +388,21 @@ def test_compact_layout_answers_like_the_fast_layout(index32):
     _, again_weights, again_cells = again.weights(points, fast_cells)
     assert np.array_equal(again_cells, fast_cells)
     assert np.array_equal(again_weights, compact_weights)
+    # The rebuilt layout keeps no cells: loaded from its bytes it answers as compact, bit for bit.
+    rebuilt = Store.build(positions, sh, layout="rebuilt")
+    info = rebuilt.info()
+    assert info["layout"] == "rebuilt" and info["section_bytes"]["cells"] == 0 and info["section_bytes"]["grid"] == 0
+    assert info["cells"] == compact.info()["cells"] and info["bytes"] < compact.info()["bytes"]
+    reloaded = Store.load(rebuilt.to_bytes())
+    rebuilt_indices, rebuilt_weights, rebuilt_cells = reloaded.weights(points)
+    assert np.array_equal(rebuilt_cells, compact_cells) and np.array_equal(rebuilt_indices, compact_indices)
+    assert np.array_equal(rebuilt_weights, compact_weights)
+    assert np.array_equal(reloaded.interpolate(points)[0], compact_sh)
+    assert Store.build(positions, sh, layout="compact").info()["layout"] == "compact"
+    with pytest.raises(ValueError, match="layout"):
+        Store.build(positions, sh, compact=True, layout="rebuilt")
+    with pytest.raises(ValueError, match="layout"):
+        Store.build(positions, sh, layout="tiny")
 
 
 def test_threads_give_the_same_answers_as_one_thread():

@@ -64,7 +64,8 @@ class BuildOptions(Structure):
     _fields_ = [("struct_size", c_uint32), ("flags", c_uint32), ("merge_tolerance", c_double),
                 ("flat_tolerance", c_double), ("progress", ProgressFn), ("progress_user", c_void_p),
                 ("occlusion", c_void_p), ("occlusion_stride", c_size_t), ("occlusion_lights", c_uint32),
-                ("scene", c_void_p), ("sh_encoding", c_uint32), ("quantize_positions", c_uint32)]
+                ("scene", c_void_p), ("sh_encoding", c_uint32), ("quantize_positions", c_uint32),
+                ("layout", c_uint32)]
 
 
 class StoreLoadOptions(Structure):
