@@ -220,6 +220,17 @@ void Scene::set_probes(const float* positions, size_t count, size_t stride_bytes
     probes_ = std::move(probes);
 }
 
+void Scene::set_playable_seeds(const float* positions, size_t count, size_t stride_bytes) {
+    if (stride_bytes == 0) stride_bytes = 3 * sizeof(float);
+    std::vector<float> seeds(3 * count);
+    for (size_t i = 0; i < count; ++i) {
+        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const char*>(positions) + i * stride_bytes);
+        if (!finite3(p)) scene_error("playable seed " + std::to_string(i), "position " + triple(p) + " is not finite");
+        std::copy(p, p + 3, &seeds[3 * i]);
+    }
+    playable_seeds_ = std::move(seeds);
+}
+
 uint32_t Scene::dropped_triangles() const {
     uint32_t dropped = 0;
     for (const Mesh& m : meshes_) dropped += m.dropped_triangles;

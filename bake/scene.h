@@ -80,12 +80,16 @@ public:
     void set_sky_color(const float rgb[3]);
     void set_sky_sh(const float sh[27]);
     void set_probes(const float* positions, size_t count, size_t stride_bytes = 0);
+    // Points known to be in the playable space (a level's spawn points): automatic placement keeps only
+    // candidates connected to them (bake/placement_candidates.h). 3 floats each, world; finite.
+    void set_playable_seeds(const float* positions, size_t count, size_t stride_bytes = 0);
 
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }
     const Sky& sky() const { return sky_; }
     const std::vector<float>& probes() const { return probes_; }
     size_t probe_count() const { return probes_.size() / 3; }
+    const std::vector<float>& playable_seeds() const { return playable_seeds_; }
     uint32_t dropped_triangles() const;
     uint32_t mixed_light_count() const;
     // True when there is nothing that emits light or occludes it: no mesh, no light, no sky.
@@ -96,6 +100,7 @@ private:
     std::vector<Light> lights_;
     Sky sky_;
     std::vector<float> probes_;
+    std::vector<float> playable_seeds_;
 };
 
 // Checks a material, throwing Error(Status::scene) naming `where` when it is invalid.

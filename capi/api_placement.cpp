@@ -8,6 +8,7 @@
 #include "bake/probe_placement.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -22,13 +23,17 @@ tp_status read_positions(const float* positions, size_t stride, size_t count, st
     return TP_OK;
 }
 
+// The struct before light_clearance was added: a caller built against it gets that field's default.
+constexpr size_t kFirstPlacementOptionsSize = offsetof(tp_placement_options, light_clearance);
+
 tp_status read_placement_options(const tp_placement_options* options, tetprobe::PlacementSettings& settings) {
     if (!options) return TP_OK;
-    if (options->struct_size < sizeof(tp_placement_options))
+    if (options->struct_size < kFirstPlacementOptionsSize)
         return fail(TP_ERROR_INVALID_ARGUMENT, "options->struct_size is not set (call tp_placement_options_init)");
     if (options->mode != TP_PLACEMENT_WHOLE && options->mode != TP_PLACEMENT_WALKABLE)
         return fail(TP_ERROR_INVALID_ARGUMENT, "unknown placement mode " + std::to_string(options->mode));
-    if (options->rays == 0) return fail(TP_ERROR_INVALID_ARGUMENT, "options->rays must be at least 1");
+    if (options->rays < 2)
+        return fail(TP_ERROR_INVALID_ARGUMENT, "options->rays must be at least 2 (the candidates are baked in two halves)");
     settings.rules.mode = static_cast<tetprobe::PlacementMode>(options->mode);
     settings.rules.spacing = options->spacing;
     settings.rules.margin = options->margin;
@@ -42,6 +47,8 @@ tp_status read_placement_options(const tp_placement_options* options, tetprobe::
     settings.threads = options->threads;
     settings.progress = options->progress;
     settings.progress_user = options->progress_user;
+    if (options->struct_size >= offsetof(tp_placement_options, light_clearance) + sizeof(float))
+        settings.light_clearance = options->light_clearance;
     return TP_OK;
 }
 

@@ -37,6 +37,7 @@ inline tp_placement_options default_placement_options() {
     options.error_bound = kDefaultPlacementErrorBound;
     options.rays = kDefaultPlacementRays;
     options.bounces = kDefaultBakeBounces;
+    options.light_clearance = kDefaultPlacementLightClearance;
     return options;
 }
 

@@ -15,7 +15,8 @@ constexpr float kDefaultAlbedo = 0.8f;
 constexpr float kDefaultPlacementSpacing = 1.0f;  // world units
 constexpr float kDefaultPlacementMargin = 0.1f;   // world units
 constexpr float kDefaultWalkMinHeight = 0.0f, kDefaultWalkMaxHeight = 2.0f;
-constexpr float kDefaultPlacementErrorBound = 0.05f;
+constexpr float kDefaultPlacementErrorBound = 0.25f;
+constexpr float kDefaultPlacementLightClearance = 1.0f;  // world units
 constexpr uint32_t kDefaultPlacementRays = 128;
 
 }  // namespace tetprobe

@@ -313,9 +313,9 @@ class Report:
         doc = self.docs.get("placement")
         if doc is None:
             return out + not_run(self.missing["placement"]) + [""]
-        out += ["%s: `tetprobe.place_probes` from %s candidates (spacing %s m, %s rays), pruned to a target. "
-                "Left of the plot: the placement's own error curve (the relative irradiance change at its "
-                "held-out points against all candidates, low-sample). Table and right: the placed probes, a "
+        out += ["%s: `tetprobe.place_probes` from %s candidates (spacing %s m, %s rays), chosen up to a target. "
+                "Left of the plot: the placement's own error curve (its estimate of the luminance irradiance's "
+                "interpolation error at validation points, low-sample). Table and right: the placed probes, a "
                 "uniform subsample of the same candidates and the scene's hand-placed probes, each baked at %s "
                 "rays, judged at %s random free points against a bake there (mean relative irradiance "
                 "error)." % (doc.get("scene"), num(doc.get("candidates")), num(doc.get("spacing")),

@@ -204,9 +204,8 @@ class Plotter:
         fig, (left, right) = plt.subplots(1, 2, figsize=(10.5, 4.0))
         fig.subplots_adjust(wspace=0.3)
         left.plot([c[0] for c in curve], [c[1] for c in curve], marker="o", markersize=3)
-        left.invert_xaxis()
-        left.set_xlabel("probes (pruned from %d candidates)" % doc["candidates"])
-        left.set_ylabel("irradiance change at held-out points (relative)")
+        left.set_xlabel("probes (chosen among %d candidates)" % doc["candidates"])
+        left.set_ylabel("estimated error at validation points (relative)")
         left.set_title("placement's own error curve")
         left.grid(True, alpha=0.3)
         rows = doc["comparison"]

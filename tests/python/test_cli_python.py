@@ -217,7 +217,7 @@ def test_place_matches_the_c_tool_byte_for_byte(tmp_path, mode):
     timing = re.compile(r" in \d+\.\d\d s,")
     assert timing.search(c[1]) and timing.search(python[1])
     assert timing.sub("", c[1]) == timing.sub("", python[1])
-    assert c[1].startswith("placed 40 probes (of ")
+    assert c[1].startswith("placed 40 probes in ")
     assert assert_progress_lines(c[2], "place") == assert_progress_lines(python[2], "place") == []
 
 

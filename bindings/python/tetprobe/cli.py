@@ -639,7 +639,7 @@ def command_place(args):
     min_height = parse_number(a.value("--min-height", _default_text(defaults.walk_min_height)), "--min-height")
     max_height = parse_number(a.value("--max-height", _default_text(defaults.walk_max_height)), "--max-height")
     target = parse_count(a.value("--target", "0"), "--target") & 0xFFFFFFFF
-    # A target alone prunes to it; an error bound alone (or with the target) also stops pruning.
+    # A target alone places that many; an error bound alone (or with the target) also stops placement.
     error_bound = parse_number(a.value("--error", "0" if a.has("--target") else _default_text(defaults.error_bound)),
                                "--error")
     rays = parse_count(a.value("--rays", str(defaults.rays)), "--rays") & 0xFFFFFFFF
@@ -667,9 +667,8 @@ def command_place(args):
     write_file_atomically(path, csv.encode())
     points = len(curve)
     error = float(curve[-1, 1]) if points else 0.0
-    out("placed %u probes (of %.0f candidates) in %.2f s, error %.4f (relative irradiance change at "
-        "held-out points); wrote %s\n" % (len(positions), float(curve[0, 0]) if points else len(positions), seconds,
-                                          error, path))
+    out("placed %u probes in %.2f s, estimated error %.4f (luminance irradiance at validation points, "
+        "relative to their mean); wrote %s\n" % (len(positions), seconds, error, path))
     if a.has("--curve"):
         # nlohmann::json (not ordered): keys sorted; floats printed as the double they widen to.
         as_float = [float(np.float32(v)) for v in (spacing, margin)]
