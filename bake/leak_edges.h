@@ -11,10 +11,16 @@ namespace tetprobe {
 // Fraction of an edge by which the ramp reaches beyond the wall on either side: visibility changes
 // over at least a tenth of the edge, so that it varies continuously (and not as a step) near a thin wall.
 constexpr double kLeakRampMargin = 0.05;
+// Fraction of an edge by which the parallel segments that tell a separating surface from a grazing one
+// lie beside it (see add_leak_edges).
+constexpr double kLeakSeparationOffset = 0.15;
 
 // Casts a ray each way along every cell edge (Embree, local coordinates) and fills data.leak_offsets
 // and data.leak_edges; leaves both empty when no edge is blocked (the store then has no leak
-// sections). Needs positions, origin and cells filled. Returns the number of blocked edges.
+// sections). An edge counts as blocked only when a surface separates its probes: the four segments
+// parallel to it, kLeakSeparationOffset of its length away across it and above and below it, are
+// blocked too (a segment grazing a step or a wall's edge joins probes that see the same light). Needs
+// positions, origin and cells filled. Returns the number of blocked edges.
 size_t add_leak_edges(const Scene& scene, StoreData& data);
 
 }  // namespace tetprobe
