@@ -3,16 +3,20 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 
-.PHONY: deps build demo test test-fast sanitize tsan fuzz fuzz-short cross bench bench-docs clean
+.PHONY: deps configure build demo test test-fast sanitize tsan fuzz fuzz-short cross bench bench-docs clean
 
 deps:
 	bash .ci/install-deps.sh
 
-build: deps
+configure: deps
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS) >/dev/null
+
+build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-demo: build
+# Only what the demo runs: the command-line tool and the library it links (not the tests or the benchmark).
+demo: configure
+	cmake --build $(BUILD) -j $(JOBS) --target tetprobe_cli
 	$(BUILD)/samples/tetprobe demo --out $(BUILD)/demo
 
 # Every test: the normal build, the ASan+UBSan build of the whole suite, a short fuzz run, and the
@@ -42,7 +46,7 @@ tsan: deps
 fuzz-build: deps
 	cmake -S . -B $(BUILD)-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DTETPROBE_FUZZ=ON \
 	  -DCMAKE_C_COMPILER=clang-14 -DCMAKE_CXX_COMPILER=clang++-14 >/dev/null
-	cmake --build $(BUILD)-fuzz -j $(JOBS) --target fuzz_load fuzz_build
+	cmake --build $(BUILD)-fuzz -j $(JOBS) --target fuzz_load fuzz_build fuzz_bsp
 
 fuzz-short: fuzz-build
 	bash tests/fuzz/run.sh $(BUILD)-fuzz short
@@ -59,10 +63,17 @@ cross: deps
 # markdown) into $(BENCH_OUT), scipy times find_simplex on the locate part's points, and report.py
 # writes report.md and the PNG plots there (placement_vs_uniform.py adds placement.json before it). A
 # part that fails is named "not run" in the report, so the old results of a part are removed first. `make bench-docs` copies the report into docs/bench/.
+# The real levels (issue 15): run_levels.sh installs Debian's openarena-081-maps if missing, extracts the
+# levels into $(BUILD)/levels (never the repository) and runs BENCH_LEVELS: "default" (two levels), "all"
+# (every level of the benchmark) or names separated by commas; each level's reference is cached in
+# $(BUILD)/levels/cache, so a second run skips it.
 BENCH_OUT ?= $(BUILD)/bench
 BENCH_PARTS ?= methods precision locate bake probes leak
+BENCH_LEVELS ?= default
 bench: build
 	rm -rf $(BENCH_OUT) && mkdir -p $(BENCH_OUT)
+	bash samples/bench/run_levels.sh $(BUILD) $(BENCH_OUT) $(BENCH_LEVELS) > $(BENCH_OUT)/levels.txt \
+	  || echo "the real-level part failed: the report says so"
 	$(BUILD)/samples/tetprobe_bench store > $(BENCH_OUT)/store.md.tmp && mv $(BENCH_OUT)/store.md.tmp $(BENCH_OUT)/store.md \
 	  || echo "tetprobe_bench store failed: the report says so"
 	for part in $(BENCH_PARTS); do \

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Installs every Debian package tetprobe needs (see DESIGN.md). Idempotent: does nothing when all are present.
+# Installs every Debian package tetprobe's build, tests, benchmark and cross builds need (README.md, "Two
+# commands"). Idempotent: does nothing when all are present.
 set -euo pipefail
 PACKAGES=(
   build-essential cmake pkg-config
   libtet1.5-dev libeigen3-dev libembree-dev catch2
-  nlohmann-json3-dev libtinyobjloader-dev libstb-dev
+  nlohmann-json3-dev libassimp-dev libstb-dev
   python3 python3-numpy python3-scipy python3-matplotlib python3-pytest
-  python3-pip python3-setuptools python3-wheel
+  python3-pip python3-setuptools python3-wheel python3-venv
   mono-mcs mono-runtime
   clang-14 libclang-rt-14-dev
   libcgal-dev

@@ -1,7 +1,7 @@
 // Delaunay tetrahedralization of a general (3D) point set by TetGen 1.5.
 #pragma once
 
-#include "bake/simplex_mesh.h"
+#include "core/simplex_mesh.h"
 
 #include <Eigen/Core>
 

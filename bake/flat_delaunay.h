@@ -4,7 +4,7 @@
 // sphere" and "empty circumcircle" coincide).
 #pragma once
 
-#include "bake/simplex_mesh.h"
+#include "core/simplex_mesh.h"
 
 #include <Eigen/Core>
 

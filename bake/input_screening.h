@@ -2,16 +2,14 @@
 // which aborts the process on NaN, Inf or degenerate input) ever sees a value it cannot handle.
 #pragma once
 
+#include "core/coordinate_limits.h"
+
 #include <Eigen/Core>
 
 #include <cstddef>
 #include <vector>
 
 namespace tetprobe {
-
-// Largest coordinate magnitude accepted: far beyond any world, small enough that squared distances
-// and cross products stay finite in double.
-constexpr double kMaxCoordinate = 1e30;
 
 // Smallest extent (bounding-box diagonal) of a probe set with more than one distinct position. Far
 // below any world's detail; below about 1e-15 the outer cells' float rows lose the set (walks there

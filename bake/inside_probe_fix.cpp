@@ -84,7 +84,7 @@ std::vector<float> fix_inside_probes(const Scene& scene, const std::vector<float
             return;
         }
         stuck[i] = 1;
-    }, ProgressRange{}, "inside probes");
+    }, Progress{}, "inside probes");
 
     for (size_t i = 0; i < count; ++i)
         if (stuck[i])

@@ -137,7 +137,7 @@ std::vector<uint32_t> find_inside_probes(const Scene& scene, const std::vector<f
         const float local[3] = {float(positions[3 * i] - origin[0]), float(positions[3 * i + 1] - origin[1]),
                                 float(positions[3 * i + 2] - origin[2])};
         inside[i] = test.inside(local) ? 1 : 0;
-    }, ProgressRange{}, "inside test");
+    }, Progress{}, "inside test");
     std::vector<uint32_t> indices;
     for (size_t i = 0; i < count; ++i)
         if (inside[i]) indices.push_back(uint32_t(i));

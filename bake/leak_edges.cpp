@@ -1,5 +1,6 @@
 #include "bake/leak_edges.h"
 
+#include "bake/parallel_jobs.h"
 #include "bake/ray_caster.h"
 
 #include <algorithm>
@@ -60,7 +61,7 @@ bool separated(const RayCaster& caster, const float a[3], const float b[3]) {
 
 }  // namespace
 
-size_t add_leak_edges(const Scene& scene, StoreData& data) {
+size_t add_leak_edges(const Scene& scene, StoreData& data, uint32_t threads, const Progress& progress) {
     data.leak_offsets.clear();
     data.leak_edges.clear();
     if (scene.meshes().empty()) return 0;
@@ -78,13 +79,21 @@ size_t add_leak_edges(const Scene& scene, StoreData& data) {
 
     const RayCaster caster(scene, data.origin);
     const uint32_t probes = data.probe_count();
+    // The first hit from each end of every pair (none for a pair no surface separates), found on worker
+    // threads; kept in the pairs' order.
+    std::vector<std::pair<double, double>> hits(pairs.size());
+    run_jobs(pairs.size(), threads, [&](size_t k) {
+        const float* a = &data.positions[3 * size_t(pairs[k].first)];
+        const float* b = &data.positions[3 * size_t(pairs[k].second)];
+        hits[k] = {first_hit(caster, a, b), first_hit(caster, b, a)};
+        if ((hits[k].first >= 0 || hits[k].second >= 0) && !separated(caster, a, b)) hits[k] = {-1.0, -1.0};
+    }, progress, "leak control");
     std::vector<LeakEdge> edges;
     std::vector<uint32_t> owners;
-    for (const auto& pair : pairs) {
-        const float* a = &data.positions[3 * size_t(pair.first)];
-        const float* b = &data.positions[3 * size_t(pair.second)];
-        const double from_a = first_hit(caster, a, b), from_b = first_hit(caster, b, a);
-        if ((from_a < 0 && from_b < 0) || !separated(caster, a, b)) continue;
+    for (size_t k = 0; k < pairs.size(); ++k) {
+        const auto& pair = pairs[k];
+        const double from_a = hits[k].first, from_b = hits[k].second;
+        if (from_a < 0 && from_b < 0) continue;
         // The wall spans [near, far] along a->b; a hit found one way only is a wall of no thickness.
         double near = from_a >= 0 ? from_a : 1.0 - from_b, far = from_b >= 0 ? 1.0 - from_b : from_a;
         if (near > far) std::swap(near, far);

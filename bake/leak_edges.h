@@ -3,8 +3,11 @@
 // which a query's visibility passes from one probe to the other (store_format.h, core/leak_control.h).
 #pragma once
 
+#include "bake/progress.h"
 #include "bake/scene.h"
 #include "core/store_data.h"
+
+#include <cstdint>
 
 namespace tetprobe {
 
@@ -15,12 +18,13 @@ constexpr double kLeakRampMargin = 0.05;
 // lie beside it (see add_leak_edges).
 constexpr double kLeakSeparationOffset = 0.15;
 
-// Casts a ray each way along every cell edge (Embree, local coordinates) and fills data.leak_offsets
-// and data.leak_edges; leaves both empty when no edge is blocked (the store then has no leak
-// sections). An edge counts as blocked only when a surface separates its probes: the four segments
-// parallel to it, kLeakSeparationOffset of its length away across it and above and below it, are
-// blocked too (a segment grazing a step or a wall's edge joins probes that see the same light). Needs
-// positions, origin and cells filled. Returns the number of blocked edges.
-size_t add_leak_edges(const Scene& scene, StoreData& data);
+// Casts a ray each way along every cell edge (Embree, local coordinates, on up to `threads` threads,
+// 0 = all cores; the result does not depend on it) and fills data.leak_offsets and data.leak_edges;
+// leaves both empty when no edge is blocked (the store then has no leak sections). An edge counts as
+// blocked only when a surface separates its probes: the four segments parallel to it,
+// kLeakSeparationOffset of its length away across it and above and below it, are blocked too (a segment
+// grazing a step or a wall's edge joins probes that see the same light). Needs positions, origin and
+// cells filled. Reports stage "leak control". Returns the number of blocked edges.
+size_t add_leak_edges(const Scene& scene, StoreData& data, uint32_t threads = 0, const Progress& progress = {});
 
 }  // namespace tetprobe

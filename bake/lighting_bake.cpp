@@ -1,5 +1,6 @@
 #include "bake/lighting_bake.h"
 
+#include "bake/parallel_jobs.h"
 #include "bake/ray_caster.h"
 #include "bake/sampling.h"
 #include "core/error.h"
@@ -12,10 +13,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
-#include <exception>
-#include <mutex>
-#include <thread>
+#include <memory>
 #include <utility>
 
 namespace tetprobe {
@@ -437,52 +435,14 @@ std::vector<float> bake_lighting(const Scene& scene, const std::vector<float>& p
     if (plan_out) *plan_out = plan;
     const Baker baker(scene, positions, settings, plan);
 
-    size_t threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
-    threads = std::min(threads, count);
     std::vector<float> sh(27 * count);
-    std::atomic<size_t> next{0}, done{0};
-    std::atomic<bool> stop{false};
     std::atomic<uint64_t> rays{0};
-    std::mutex mutex;
-    std::condition_variable progressed;
-    std::exception_ptr failure;
-
     const auto start = std::chrono::steady_clock::now();
-    auto work = [&]() {
+    run_jobs(count, settings.threads, [&](size_t i) {
         uint64_t traced = 0;
-        try {
-            for (size_t i; !stop.load(std::memory_order_relaxed) && (i = next.fetch_add(1)) < count;) {
-                baker.bake_probe(i, &sh[27 * i], &traced);
-                done.fetch_add(1);
-                progressed.notify_one();
-            }
-        } catch (...) {
-            std::lock_guard<std::mutex> lock(mutex);
-            if (!failure) failure = std::current_exception();
-            stop = true;
-        }
-        rays.fetch_add(traced);
-        progressed.notify_one();
-    };
-    std::vector<std::thread> pool;
-    for (size_t t = 0; t < threads; ++t) pool.emplace_back(work);
-
-    // The calling thread reports progress, so callbacks never run on a worker.
-    bool cancelled = false;
-    while (true) {
-        size_t finished = done.load();
-        if (settings.progress && !cancelled &&
-            settings.progress(settings.progress_user, float(double(finished) / double(count)), "bake") != 0) {
-            cancelled = true;
-            stop = true;
-        }
-        if (finished == count || stop.load()) break;
-        std::unique_lock<std::mutex> lock(mutex);
-        progressed.wait_for(lock, std::chrono::milliseconds(50));
-    }
-    for (std::thread& t : pool) t.join();
-    if (failure) std::rethrow_exception(failure);
-    if (cancelled) throw Error(Status::cancelled, "the bake was cancelled by the progress callback");
+        baker.bake_probe(i, &sh[27 * i], &traced);
+        rays.fetch_add(traced, std::memory_order_relaxed);
+    }, settings.progress, "bake");
     if (stats) {
         stats->rays_cast = rays.load();
         stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

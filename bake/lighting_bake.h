@@ -3,6 +3,7 @@
 #pragma once
 
 #include "bake/effects_plan.h"
+#include "bake/progress.h"
 #include "bake/scene.h"
 #include "core/option_defaults.h"
 
@@ -18,8 +19,7 @@ struct BakeSettings {
     uint32_t threads = 0;    // 0 = all cores
     bool culling = true;     // false: every mesh occludes every light (test aid)
     bool emitter_sampling = true;  // false: emission is found only by rays that hit it (test and benchmark aid)
-    tp_progress_fn progress = nullptr;
-    void* progress_user = nullptr;
+    Progress progress;             // stage "bake"; cancelling throws Error(Status::cancelled)
 };
 
 struct BakeStats {

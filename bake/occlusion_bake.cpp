@@ -1,7 +1,7 @@
 #include "bake/occlusion_bake.h"
 
+#include "bake/parallel_jobs.h"
 #include "bake/ray_caster.h"
-#include "core/error.h"
 
 #include <algorithm>
 #include <cmath>
@@ -30,17 +30,14 @@ std::vector<uint8_t> bake_occlusion(const Scene& scene, const std::vector<float>
         origin[k] = 0.5 * (lo + hi);
     }
     const RayCaster caster(scene, origin);
-    for (size_t i = 0; i < count; ++i) {
-        if (settings.progress && (i & 1023) == 0 &&
-            settings.progress(settings.progress_user, float(i) / float(count), "occlusion") != 0)
-            throw Error(Status::cancelled, "occlusion bake cancelled");
+    run_jobs(count, settings.threads, [&](size_t i) {
         float probe[3];
         bool in_range = true;
         for (int k = 0; k < 3; ++k) {
             probe[k] = float(double(positions[3 * i + size_t(k)]) - origin[k]);
             in_range &= std::fabs(probe[k]) < kLargestRayCoordinate;
         }
-        if (!in_range) continue;  // beyond what Embree traces: left unshadowed
+        if (!in_range) return;  // beyond what Embree traces: left unshadowed
         for (size_t l = 0; l < mixed.size(); ++l) {
             const Light& light = *mixed[l];
             if (!light.shadows) continue;
@@ -62,7 +59,7 @@ std::vector<uint8_t> bake_occlusion(const Scene& scene, const std::vector<float>
             const float far = std::isinf(distance) ? std::numeric_limits<float>::infinity() : float(distance);
             if (caster.occluded(probe, direction, 0.0f, far, -1)) out[4 * i + l] = 0;
         }
-    }
+    }, settings.progress, "occlusion");
     return out;
 }
 

@@ -1,7 +1,5 @@
 #include "bake/parallel_jobs.h"
 
-#include "core/error.h"
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -13,21 +11,7 @@
 
 namespace tetprobe {
 
-void ProgressRange::report(double fraction, const char* stage) const {
-    if (!callback) return;
-    const double f = double(from) + (double(to) - double(from)) * std::min(std::max(fraction, 0.0), 1.0);
-    if (callback(user, float(f), stage) != 0)
-        throw Error(Status::cancelled, std::string("cancelled by the progress callback during ") + stage);
-}
-
-ProgressRange ProgressRange::part(double a, double b) const {
-    ProgressRange sub = *this;
-    sub.from = float(double(from) + (double(to) - double(from)) * a);
-    sub.to = float(double(from) + (double(to) - double(from)) * b);
-    return sub;
-}
-
-void run_jobs(size_t count, uint32_t threads, const std::function<void(size_t)>& job, const ProgressRange& progress,
+void run_jobs(size_t count, uint32_t threads, const std::function<void(size_t)>& job, const Progress& progress,
               const char* stage) {
     size_t workers = threads ? threads : std::max(1u, std::thread::hardware_concurrency());
     workers = std::max<size_t>(1, std::min(workers, count));

@@ -3,7 +3,7 @@
 // depend on the thread count.
 #pragma once
 
-#include "capi/tetprobe.h"
+#include "bake/progress.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -11,23 +11,10 @@
 
 namespace tetprobe {
 
-// A slice [from, to] of a caller's progress: long work made of stages reports each stage's own
-// fraction through it.
-struct ProgressRange {
-    tp_progress_fn callback = nullptr;
-    void* user = nullptr;
-    float from = 0.0f, to = 1.0f;
-
-    // Reports `fraction` of this slice; throws Error(Status::cancelled) when the callback asks to stop.
-    void report(double fraction, const char* stage) const;
-    // The sub-slice [a, b] of this one (a, b in [0, 1]).
-    ProgressRange part(double a, double b) const;
-};
-
-// Runs job(i) for every i in [0, count) on up to `threads` threads (0 = all cores). Rethrows the
-// first exception of a job; throws Error(Status::cancelled) when the progress callback returns
-// non-zero (the remaining jobs are skipped).
-void run_jobs(size_t count, uint32_t threads, const std::function<void(size_t)>& job, const ProgressRange& progress,
+// Runs job(i) for every i in [0, count) on up to `threads` threads (0 = all cores), reporting the
+// fraction of jobs done under `stage`. Rethrows the first exception of a job; throws
+// Error(Status::cancelled) when the progress callback returns non-zero (the remaining jobs are skipped).
+void run_jobs(size_t count, uint32_t threads, const std::function<void(size_t)>& job, const Progress& progress,
               const char* stage);
 
 }  // namespace tetprobe

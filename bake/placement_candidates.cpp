@@ -1,6 +1,7 @@
 #include "bake/placement_candidates.h"
 
 #include "bake/inside_test.h"
+#include "bake/parallel_jobs.h"
 #include "bake/sampling.h"
 #include "core/error.h"
 
@@ -15,7 +16,7 @@ namespace tetprobe {
 
 namespace {
 
-// Lowest cosine between an upward-facing floor's normal and +y (45 degrees).
+// Lowest cosine between an upward-facing floor's normal and +y, the up of the frame the rules run in (45 degrees).
 constexpr double kFloorCosine = 0.7071;
 // Floors a walkable column may have (storeys, tables, stairs); more are ignored.
 constexpr size_t kMaxFloorsPerColumn = 64;
@@ -248,7 +249,7 @@ double band_top(const Scene& scene, const Lattice& l, const CandidateRules& rule
 // candidate's column (ix + nx * iz), non-decreasing. Returns the kept indices, ascending.
 std::vector<uint32_t> reached_from_seeds(const Scene& scene, const Lattice& l, const Geometry& geometry,
                                          const std::vector<float>& positions, const std::vector<uint64_t>& columns,
-                                         uint32_t threads, const ProgressRange& progress) {
+                                         uint32_t threads, const Progress& progress) {
     const size_t count = positions.size() / 3;
     const size_t nx = l.counts[0], nz = l.counts[2];
     auto column_range = [&](int64_t ix, int64_t iz, size_t* first, size_t* last) {
@@ -333,7 +334,7 @@ std::vector<uint32_t> reached_from_seeds(const Scene& scene, const Lattice& l, c
 // no surface and the point is not inside geometry: points fall uniformly over the free volume.
 std::vector<float> validation_points(const Lattice& l, const Geometry& geometry, const std::vector<float>& candidates,
                                      const std::vector<float>& extents, const std::vector<uint64_t>& columns, uint64_t seed,
-                                     uint32_t threads, const ProgressRange& progress) {
+                                     uint32_t threads, const Progress& progress) {
     const size_t count = candidates.size() / 3;
     const size_t wanted = count < kMinValidation ? count
                                                  : std::min(kMaxValidation, std::max(kMinValidation, count / kCandidatesPerValidation));
@@ -396,7 +397,17 @@ bool clear_of_surfaces(const RayCaster& caster, const float local[3], double mar
     return !caster.nearest_surface(local, float(margin), &nearest) || double(nearest.distance) >= margin;
 }
 
+// Walkable columns stand along the scene's up: the rules below run where up is +y, so a scene with
+// another up is turned there exactly (a signed permutation of its coordinates) and points turned back.
+static bool turned_for_walking(const Scene& scene, const CandidateRules& rules, AxisTurn* back) {
+    if (rules.mode != PlacementMode::walkable || scene.up() == UpAxis::pos_y) return false;
+    *back = turn_between(UpAxis::pos_y, scene.up());
+    return true;
+}
+
 size_t candidate_bound(const Scene& scene, const CandidateRules& rules, uint32_t threads) {
+    AxisTurn back;
+    if (turned_for_walking(scene, rules, &back)) return candidate_bound(scene.meshes_turned(back.inverse()), rules, threads);
     const Lattice l = make_lattice(scene, rules);
     if (rules.mode == PlacementMode::whole) return l.counts[0] * l.counts[1] * l.counts[2];
     const double origin[3] = {centre(l.lo[0], l.hi[0]), centre(l.lo[1], l.hi[1]), centre(l.lo[2], l.hi[2])};
@@ -415,12 +426,19 @@ size_t candidate_bound(const Scene& scene, const CandidateRules& rules, uint32_t
 }
 
 Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint64_t seed, uint32_t threads,
-                           const ProgressRange& progress) {
+                           const Progress& progress) {
+    AxisTurn back;
+    if (turned_for_walking(scene, rules, &back)) {  // extents stay heights of the turned frame
+        Candidates turned = find_candidates(scene.meshes_turned(back.inverse()), rules, seed, threads, progress);
+        for (std::vector<float>* points : {&turned.positions, &turned.validation})
+            for (size_t i = 0; i < points->size(); i += 3) back.apply(&(*points)[i], &(*points)[i]);
+        return turned;
+    }
     const Lattice l = make_lattice(scene, rules);
     const double origin[3] = {centre(l.lo[0], l.hi[0]), centre(l.lo[1], l.hi[1]), centre(l.lo[2], l.hi[2])};
     const Geometry geometry(scene, origin);
     const bool seeded = !scene.playable_seeds().empty();
-    const ProgressRange testing = progress.part(0, seeded ? 0.6 : 0.9);
+    const Progress testing = progress.part(0, seeded ? 0.6 : 0.9);
 
     // Row by row of columns (z), each row's candidates in column order.
     const size_t rows = l.counts[2];

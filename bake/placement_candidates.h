@@ -3,7 +3,8 @@
 //
 // Candidates stand on a lattice of `spacing`. The whole mode takes the lattice points over the scene's
 // bounds; the walkable mode takes vertical columns of it, finds every upward-facing surface along each
-// (up is +y; a floor faces up within 45 degrees, a one-sided surface seen from behind is none), and
+// (up is the scene's up, Scene::up; a floor faces up within 45 degrees, a one-sided surface seen from
+// behind is none), and
 // stands points above each floor across the height band [walk_min_height, walk_max_height], a spacing
 // apart, cut off `margin` below the next surface above the floor and at the scene's bounds. Kept points
 // are outside geometry (bake/inside_test.h) and at least `margin` from every surface. When the scene
@@ -20,7 +21,7 @@
 // for every four candidates (at least 1,024 when there are that many candidates, at most 16,384).
 #pragma once
 
-#include "bake/parallel_jobs.h"
+#include "bake/progress.h"
 #include "bake/ray_caster.h"
 #include "bake/scene.h"
 #include "core/option_defaults.h"
@@ -49,7 +50,7 @@ struct CandidateRules {
 
 struct Candidates {
     std::vector<float> positions;   // 3 per candidate, world, column by column (x, then z; y within)
-    std::vector<float> extents;     // 2 per candidate: the heights (world y) of the volume it stands for
+    std::vector<float> extents;     // 2 per candidate: the heights of the volume it stands for (along up)
     std::vector<float> validation;  // 3 per validation point
     size_t tested = 0;              // points the inside and margin tests were applied to
     size_t unreached = 0;           // candidates left out because no playable seed reaches them
@@ -66,7 +67,7 @@ size_t candidate_bound(const Scene& scene, const CandidateRules& rules, uint32_t
 // the inside test cannot decide (bake/inside_test.h) or no playable seed sees a candidate, and
 // Error(Status::cancelled) from the progress callback.
 Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint64_t seed, uint32_t threads,
-                           const ProgressRange& progress);
+                           const Progress& progress);
 
 // Whether no surface lies closer than margin to the local point (margin 0: always).
 bool clear_of_surfaces(const RayCaster& caster, const float local[3], double margin);

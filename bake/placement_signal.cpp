@@ -13,12 +13,6 @@ namespace {
 // Each half's seed: the caller's seed mixed with the half's number, so halves never share samples.
 uint64_t half_seed(uint64_t seed, int half) { return mix64(seed ^ (0x5eedull + uint64_t(half))); }
 
-// Forwards the lighting bake's progress into a slice of the caller's.
-int forward_progress(void* user, float fraction, const char*) {
-    const ProgressRange& range = *static_cast<const ProgressRange*>(user);
-    return range.callback(range.user, range.from + (range.to - range.from) * fraction, "bake") != 0;
-}
-
 // Row n of the map from SH (27) to the luminance irradiance of normal n.
 const std::array<std::array<double, 27>, kSignalSize>& luminance_rows() {
     static const std::array<std::array<double, 27>, kSignalSize> rows = [] {
@@ -49,7 +43,7 @@ void luminance6(const float sh[27], double out[kSignalSize]) {
 }
 
 PointSignal measure_signal(const Scene& scene, const std::vector<float>& positions, const BakeSettings& settings,
-                           const ProgressRange& progress) {
+                           const Progress& progress) {
     if (settings.rays < 2) throw Error(Status::invalid_argument, "rays must be at least 2 (two half bakes measure the noise)");
     const size_t count = positions.size() / 3;
     PointSignal signal;
@@ -60,11 +54,7 @@ PointSignal measure_signal(const Scene& scene, const std::vector<float>& positio
         BakeSettings bake = settings;
         bake.rays = half == 0 ? settings.rays / 2 : settings.rays - settings.rays / 2;
         bake.seed = half_seed(settings.seed, half);
-        const ProgressRange range = progress.part(0.5 * half, 0.5 * (half + 1));
-        if (progress.callback) {
-            bake.progress = forward_progress;
-            bake.progress_user = const_cast<ProgressRange*>(&range);
-        }
+        bake.progress = progress.part(0.5 * half, 0.5 * (half + 1));
         const std::vector<float> sh = bake_lighting(scene, positions, bake);
         if (half == 0) {
             first.resize(kSignalSize * count);

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "bake/lighting_bake.h"
-#include "bake/parallel_jobs.h"
+#include "bake/progress.h"
 #include "bake/scene.h"
 
 #include <cstdint>
@@ -29,6 +29,6 @@ void luminance6(const float sh[27], double out[kSignalSize]);
 // the settings' bounces and threads, seeds derived from settings.seed, and returns their signal.
 // Progress: the two bakes, one after the other. Throws as bake_lighting.
 PointSignal measure_signal(const Scene& scene, const std::vector<float>& positions, const BakeSettings& settings,
-                           const ProgressRange& progress);
+                           const Progress& progress);
 
 }  // namespace tetprobe

@@ -67,7 +67,7 @@ Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
     if (!(settings.light_clearance >= 0) || !std::isfinite(settings.light_clearance))
         throw Error(Status::invalid_argument, "light_clearance must be zero or positive and finite");
     if (settings.rays < 2) throw Error(Status::invalid_argument, "rays must be at least 2 (two half bakes measure the noise)");
-    const ProgressRange progress{settings.progress, settings.progress_user, 0.0f, 1.0f};
+    const Progress& progress = settings.progress;
 
     Candidates found = find_candidates(scene, settings.rules, settings.seed, settings.threads, progress.part(0, kCandidatesEnd));
     const size_t count = found.positions.size() / 3;

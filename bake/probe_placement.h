@@ -7,6 +7,7 @@
 
 #include "bake/placement_candidates.h"
 #include "bake/probe_selection.h"
+#include "bake/progress.h"
 #include "bake/scene.h"
 #include "core/option_defaults.h"
 
@@ -27,8 +28,7 @@ struct PlacementSettings {
     // when a target needs more probes than the others (the light's inverse-square peak there is no
     // interpolation's to follow; the real-level benchmark leaves such points out alike).
     double light_clearance = kDefaultPlacementLightClearance;
-    tp_progress_fn progress = nullptr;
-    void* progress_user = nullptr;
+    Progress progress;          // stages "candidates", "bake", "select", "done"
 };
 
 struct Placement {

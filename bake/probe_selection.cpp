@@ -1,6 +1,7 @@
 #include "bake/probe_selection.h"
 
 #include "bake/insertion_gain.h"
+#include "bake/parallel_jobs.h"
 #include "bake/sampling.h"
 #include "bake/store_builder.h"
 #include "core/error.h"
@@ -320,7 +321,7 @@ private:
 }  // namespace
 
 Selection select_probes(const SignalPoints& candidates, const SignalPoints& validation, const SelectionSettings& settings,
-                        const ProgressRange& progress) {
+                        const Progress& progress) {
     Selector selector(candidates, validation, settings.threads);
     const size_t count = selector.count();
     const size_t target = settings.target_count ? std::min<size_t>(settings.target_count, count) : count;

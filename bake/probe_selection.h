@@ -18,8 +18,8 @@
 // insertion order: the first k chosen are the placement for k probes.
 #pragma once
 
-#include "bake/parallel_jobs.h"
 #include "bake/placement_signal.h"
+#include "bake/progress.h"
 
 #include <cstdint>
 #include <vector>
@@ -52,6 +52,6 @@ struct Selection {
 // Chooses probes among the candidates until the target or the bound (one of them is set). The result
 // depends only on the input, not on the thread count. Throws Error(Status::cancelled) from progress.
 Selection select_probes(const SignalPoints& candidates, const SignalPoints& validation, const SelectionSettings& settings,
-                        const ProgressRange& progress);
+                        const Progress& progress);
 
 }  // namespace tetprobe

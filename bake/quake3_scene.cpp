@@ -17,8 +17,8 @@ void add_quake3_level(Scene& scene, const Quake3Level& level) {
     for (size_t i = 0; i < level.lights.size(); ++i) {
         const Quake3Light& q = level.lights[i];
         if (!(q.light > 0)) continue;  // a dark or negative light adds nothing here
-        tp_light light = default_c_light();
-        light.type = q.spot ? TP_LIGHT_SPOT : TP_LIGHT_POINT;
+        LightDescription light;
+        light.type = q.spot ? LightType::spot : LightType::point;
         light.intensity = float(q.light * kQuake3IntensityPerLight);
         for (int k = 0; k < 3; ++k) light.color[k] = q.color[k], light.position[k] = float(q.position[k]);
         // Irradiance I / d^2 falls to pi / 255 at d = sqrt(255 I / pi).
@@ -31,8 +31,8 @@ void add_quake3_level(Scene& scene, const Quake3Level& level) {
         }
         scene.add_light(light, level.name + ": light " + std::to_string(i));
     }
-    tp_light sun = default_c_light();
-    sun.type = TP_LIGHT_DIRECTIONAL;
+    LightDescription sun;
+    sun.type = LightType::directional;
     sun.intensity = kQuake3SunIrradiance;
     const double elevation = kQuake3SunElevationDegrees * kDegrees, azimuth = kQuake3SunAzimuthDegrees * kDegrees;
     const double toward_sun[3] = {std::cos(elevation) * std::cos(azimuth), std::sin(elevation),

@@ -59,17 +59,6 @@ void validate_material(const Material& material, const std::string& where) {
     }
 }
 
-Material material_from_c(const tp_material& material, const std::string& where) {
-    if (material.struct_size < sizeof(tp_material))
-        throw Error(Status::invalid_argument, where + ": struct_size is not set (call tp_material_init)");
-    Material m;
-    std::copy(material.albedo, material.albedo + 3, m.albedo.begin());
-    std::copy(material.emission, material.emission + 3, m.emission.begin());
-    m.two_sided = material.two_sided != 0;
-    validate_material(m, where);
-    return m;
-}
-
 uint32_t Scene::add_mesh(const float* vertices, size_t vertex_count, const uint32_t* indices,
                          size_t triangle_count, const std::vector<Material>& materials,
                          const uint32_t* triangle_materials, const std::string& label) {
@@ -136,34 +125,32 @@ uint32_t Scene::mixed_light_count() const {
     return count;
 }
 
-uint32_t Scene::add_light(const tp_light& in, const std::string& label) {
+uint32_t Scene::add_light(const LightDescription& in, const std::string& label) {
     const std::string where = label.empty() ? "light " + std::to_string(lights_.size()) : label;
-    if (in.struct_size < sizeof(tp_light))
-        throw Error(Status::invalid_argument, where + ": struct_size is not set (call tp_light_init)");
     Light light;
     switch (in.type) {
-        case TP_LIGHT_DIRECTIONAL: light.type = LightType::directional; break;
-        case TP_LIGHT_POINT: light.type = LightType::point; break;
-        case TP_LIGHT_SPOT: light.type = LightType::spot; break;
-        default: scene_error(where, "unknown type " + std::to_string(in.type));
+        case LightType::directional:
+        case LightType::point:
+        case LightType::spot: light.type = in.type; break;
+        default: scene_error(where, "unknown type " + std::to_string(uint32_t(in.type)));
     }
-    if (in.mode != TP_LIGHT_MODE_BAKED && in.mode != TP_LIGHT_MODE_REALTIME && in.mode != TP_LIGHT_MODE_MIXED)
-        scene_error(where, "unknown mode " + std::to_string(in.mode));
+    if (in.mode != LightMode::baked && in.mode != LightMode::realtime && in.mode != LightMode::mixed)
+        scene_error(where, "unknown mode " + std::to_string(uint32_t(in.mode)));
     // A mixed light is baked as a realtime one (bounced light only) and gets an occlusion channel.
-    light.mixed = in.mode == TP_LIGHT_MODE_MIXED;
-    light.realtime = in.mode != TP_LIGHT_MODE_BAKED;
+    light.mixed = in.mode == LightMode::mixed;
+    light.realtime = in.mode != LightMode::baked;
     if (light.mixed && mixed_light_count() >= kMaxMixedLights)
         scene_error(where, "a fifth mixed light: occlusion probes hold at most 4 (make it baked or realtime)");
-    light.shadows = in.shadows != 0;
-    if (!finite3(in.color) || in.color[0] < 0 || in.color[1] < 0 || in.color[2] < 0)
-        scene_error(where, "colour " + triple(in.color) + " is negative or not finite");
+    light.shadows = in.shadows;
+    if (!finite3(in.color.data()) || in.color[0] < 0 || in.color[1] < 0 || in.color[2] < 0)
+        scene_error(where, "colour " + triple(in.color.data()) + " is negative or not finite");
     if (!std::isfinite(in.intensity) || in.intensity < 0)
         scene_error(where, "intensity " + std::to_string(in.intensity) + " is negative or not finite");
-    std::copy(in.color, in.color + 3, light.color.begin());
+    light.color = in.color;
     light.intensity = in.intensity;
 
     if (light.type != LightType::point) {
-        if (!finite3(in.direction)) scene_error(where, "direction is not finite");
+        if (!finite3(in.direction.data())) scene_error(where, "direction is not finite");
         double length = std::sqrt(double(in.direction[0]) * in.direction[0] +
                                   double(in.direction[1]) * in.direction[1] +
                                   double(in.direction[2]) * in.direction[2]);
@@ -171,7 +158,7 @@ uint32_t Scene::add_light(const tp_light& in, const std::string& label) {
         for (int a = 0; a < 3; ++a) light.direction[a] = in.direction[a] / length;
     }
     if (light.positional()) {
-        if (!finite3(in.position)) scene_error(where, "position " + triple(in.position) + " is not finite");
+        if (!finite3(in.position.data())) scene_error(where, "position " + triple(in.position.data()) + " is not finite");
         for (int a = 0; a < 3; ++a) light.position[a] = in.position[a];
         if (std::isnan(in.range) || !(in.range > 0))
             scene_error(where, "range " + std::to_string(in.range) + " must be positive (INFINITY = unlimited)");
@@ -229,6 +216,32 @@ void Scene::set_playable_seeds(const float* positions, size_t count, size_t stri
         std::copy(p, p + 3, &seeds[3 * i]);
     }
     playable_seeds_ = std::move(seeds);
+}
+
+void Scene::set_up(UpAxis up) {
+    if (!is_axis(up))
+        throw Error(Status::invalid_argument, "up must be one of the six axis directions (TP_UP_POS_X ... TP_UP_NEG_Z), got " +
+                                                  std::to_string(uint32_t(up)));
+    up_ = up;
+}
+
+Scene Scene::meshes_turned(const AxisTurn& turn) const {
+    Scene turned;
+    turned.meshes_ = meshes_;
+    for (Mesh& mesh : turned.meshes_) {
+        for (size_t v = 0; v < mesh.vertices.size(); v += 3) turn.apply(&mesh.vertices[v], &mesh.vertices[v]);
+        float lo[3], hi[3];
+        turn.apply(mesh.bounds_min.data(), lo);
+        turn.apply(mesh.bounds_max.data(), hi);
+        for (int a = 0; a < 3; ++a) {
+            mesh.bounds_min[a] = std::min(lo[a], hi[a]);
+            mesh.bounds_max[a] = std::max(lo[a], hi[a]);
+        }
+    }
+    turned.up_ = turn.apply(up_);
+    turned.playable_seeds_ = playable_seeds_;
+    for (size_t s = 0; s < turned.playable_seeds_.size(); s += 3) turn.apply(&turned.playable_seeds_[s], &turned.playable_seeds_[s]);
+    return turned;
 }
 
 uint32_t Scene::dropped_triangles() const {

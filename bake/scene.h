@@ -3,8 +3,8 @@
 // degenerate triangle; messages name what is wrong and where (mesh, triangle, vertex, light).
 #pragma once
 
-#include "capi/tetprobe.h"
-#include "capi/struct_defaults.h"
+#include "bake/up_axis.h"
+#include "core/option_defaults.h"
 
 #include <array>
 #include <cstdint>
@@ -39,8 +39,30 @@ struct Mesh {
     bool reflective() const;  // some kept triangle has a non-zero albedo
 };
 
-enum class LightType { directional, point, spot };
+enum class LightType : uint32_t { directional = 0, point = 1, spot = 2 };
 
+// What the engine does with a light: baked (its direct and bounced light go into the probes),
+// realtime (the engine draws its direct light: only the bounced light is baked) or mixed (realtime
+// direct light with baked shadows: baked as realtime, plus an occlusion channel).
+enum class LightMode : uint32_t { baked = 0, realtime = 1, mixed = 2 };
+
+// A light as a caller describes it (the C ABI's tp_light, a scene file's light); Scene::add_light
+// validates it and keeps it as a Light.
+struct LightDescription {
+    LightType type = LightType::point;
+    LightMode mode = LightMode::baked;
+    bool shadows = true;
+    std::array<float, 3> color{{kDefaultLightColor, kDefaultLightColor, kDefaultLightColor}};
+    float intensity = kDefaultLightIntensity;  // directional: irradiance; point, spot: radiant intensity
+    std::array<float, 3> position{{0, 0, 0}};  // point, spot
+    // Directional, spot: the direction light travels, of any non-zero length.
+    std::array<float, 3> direction{{kDefaultLightDirection[0], kDefaultLightDirection[1], kDefaultLightDirection[2]}};
+    float range = kDefaultLightRange;            // point, spot: no light beyond (infinity = unlimited)
+    float inner_angle = kDefaultSpotInnerAngle;  // spot: full cone angle in degrees with full intensity
+    float outer_angle = kDefaultSpotOuterAngle;  // spot: full cone angle in degrees beyond which there is no light
+};
+
+// A validated light, as the bake reads it.
 struct Light {
     LightType type = LightType::point;
     bool realtime = false;  // only its bounced light is baked (mixed lights too)
@@ -74,15 +96,21 @@ public:
     uint32_t add_mesh(const float* vertices, size_t vertex_count, const uint32_t* indices,
                       size_t triangle_count, const std::vector<Material>& materials,
                       const uint32_t* triangle_materials, const std::string& label = "");
-    // Validates and adds a light (non-negative finite intensity and colour, unit direction, positive
-    // range, spot angles ordered); returns its index. label names it in messages.
-    uint32_t add_light(const tp_light& light, const std::string& label = "");
+    // Validates and adds a light (known type and mode, non-negative finite intensity and colour, a
+    // non-zero direction, positive range, spot angles ordered, at most 4 mixed lights); returns its
+    // index. label names it in messages ("light N" when empty). Throws Error(Status::scene).
+    uint32_t add_light(const LightDescription& light, const std::string& label = "");
     void set_sky_color(const float rgb[3]);
     void set_sky_sh(const float sh[27]);
     void set_probes(const float* positions, size_t count, size_t stride_bytes = 0);
     // Points known to be in the playable space (a level's spawn points): automatic placement keeps only
     // candidates connected to them (bake/placement_candidates.h). 3 floats each, world; finite.
     void set_playable_seeds(const float* positions, size_t count, size_t stride_bytes = 0);
+    // Which way is up (+y unless set): placement's walkable mode stands probes along it. Throws
+    // Error(Status::invalid_argument) for anything but one of the six axis directions.
+    void set_up(UpAxis up);
+    // What an import from a file left out or converted (a camera, a texture, a unit), one line each.
+    void add_note(const std::string& note) { notes_.push_back(note); }
 
     const std::vector<Mesh>& meshes() const { return meshes_; }
     const std::vector<Light>& lights() const { return lights_; }
@@ -90,10 +118,15 @@ public:
     const std::vector<float>& probes() const { return probes_; }
     size_t probe_count() const { return probes_.size() / 3; }
     const std::vector<float>& playable_seeds() const { return playable_seeds_; }
+    UpAxis up() const { return up_; }
+    const std::vector<std::string>& notes() const { return notes_; }
     uint32_t dropped_triangles() const;
     uint32_t mixed_light_count() const;
     // True when there is nothing that emits light or occludes it: no mesh, no light, no sky.
     bool empty() const { return meshes_.empty() && lights_.empty() && sky_.kind == SkyKind::none; }
+    // The same meshes turned exactly by `turn` (their bounds too), and up and the playable seeds turned with
+    // them; no lights, sky, probes or notes: what geometric tests (placement's floors) read in another frame.
+    Scene meshes_turned(const AxisTurn& turn) const;
 
 private:
     std::vector<Mesh> meshes_;
@@ -101,16 +134,11 @@ private:
     Sky sky_;
     std::vector<float> probes_;
     std::vector<float> playable_seeds_;
+    UpAxis up_ = UpAxis::pos_y;
+    std::vector<std::string> notes_;
 };
 
 // Checks a material, throwing Error(Status::scene) naming `where` when it is invalid.
 void validate_material(const Material& material, const std::string& where);
-
-// The defaults of tp_material_init and tp_light_init (core/option_defaults.h).
-inline tp_material default_c_material() { return default_material(); }
-inline tp_light default_c_light() { return default_light(); }
-
-// Converts a C material (struct_size must be set) to a Material.
-Material material_from_c(const tp_material& material, const std::string& where);
 
 }  // namespace tetprobe

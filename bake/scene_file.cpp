@@ -1,309 +1,106 @@
-// Scene file format (JSON object; every key optional unless said, unknown keys are errors):
-//   "meshes": [ { "name": "floor",
-//                 "obj": "floor.obj"                      (path relative to the JSON file, or absolute), or
-//                 "vertices": [[x,y,z], ...] or [x,y,z,...] and "indices": [[a,b,c], ...] or [a,b,c,...],
-//                 "material": {"albedo": [r,g,b], "emission": [r,g,b], "two_sided": bool}, or
-//                 "materials": [ {...}, ... ] with "triangle_materials": [m, ...] (one per triangle) } ],
-//   "lights": [ { "type": "directional" | "point" | "spot", "mode": "baked" | "realtime" | "mixed",
-//                 "shadows": bool, "color": [r,g,b], "intensity": x, "position": [x,y,z],
-//                 "direction": [x,y,z], "range": x or "inf", "inner_angle": deg, "outer_angle": deg } ],
-//   "sky": {"color": [r,g,b]} or {"sh": [27 floats]} or null,
-//   "probes": [[x,y,z], ...],
-//   "probe_grids": [ {"min": [x,y,z], "max": [x,y,z], "counts": [nx,ny,nz]} ]  (appended to probes).
 #include "bake/scene_file.h"
 
 #include "bake/quake3_bsp.h"
 #include "bake/quake3_scene.h"
+#include "bake/scene_import.h"
 #include "core/error.h"
 
-#define TINYOBJLOADER_IMPLEMENTATION
-#include <tiny_obj_loader.h>
-
-#include <nlohmann/json.hpp>
-
+#include <algorithm>
+#include <cctype>
 #include <cmath>
-#include <filesystem>
 #include <fstream>
-#include <initializer_list>
-#include <sstream>
 
 namespace tetprobe {
 
 namespace {
 
-using nlohmann::json;
+// The start of a file and its extension (lower case, with the dot), which is what formats are told by.
+struct FileStart {
+    std::string bytes;      // up to the first 64 bytes
+    std::string extension;  // ".glb"
 
-[[noreturn]] void fail_at(const std::string& where, const std::string& what) {
-    throw Error(Status::scene, where + ": " + what);
-}
-
-void only_keys(const json& object, const std::string& where, std::initializer_list<const char*> keys) {
-    if (!object.is_object()) fail_at(where, "expected an object");
-    for (auto it = object.begin(); it != object.end(); ++it) {
-        bool known = false;
-        for (const char* k : keys) known = known || it.key() == k;
-        if (!known) fail_at(where, "unknown key \"" + it.key() + "\"");
+    bool starts_with(const char* magic) const { return bytes.compare(0, std::char_traits<char>::length(magic), magic) == 0; }
+    bool first_text_is(char c) const {
+        for (char b : bytes)
+            if (!std::isspace(static_cast<unsigned char>(b))) return b == c;
+        return false;
     }
+};
+
+struct SceneFormat {
+    const char* name;
+    bool (*recognises)(const FileStart& file);
+    SceneImporter import;
+};
+
+// A Quake 3 level is read in y-up metres (bake/quake3_bsp.h): it is placed as it is.
+void import_quake3_level(Scene& scene, const SceneImport& import) {
+    const bool y_up = (import.file_up == UpAxis::file || import.file_up == UpAxis::pos_y) &&
+                      (import.scene_up == UpAxis::file || import.scene_up == UpAxis::pos_y);
+    if (!(import.scale == 0 || import.scale == 1) || !y_up)
+        throw Error(Status::invalid_argument, import.label + ": a Quake 3 level is read in y-up metres; it takes no other scale or up");
+    add_quake3_level(scene, read_quake3_bsp(import.path));
+    if (import.scene_up == UpAxis::file) scene.set_up(UpAxis::pos_y);
 }
 
-double number(const json& value, const std::string& where) {
-    if (!value.is_number()) fail_at(where, "expected a number, got " + value.dump());
-    return value.get<double>();
-}
+// Magic bytes first (they cannot lie), then extensions. A new format is one more row.
+const SceneFormat kFormats[] = {
+    {"Quake 3 level",
+     [](const FileStart& f) { return looks_like_quake3_bsp(reinterpret_cast<const uint8_t*>(f.bytes.data()), f.bytes.size()); },
+     import_quake3_level},
+    {"binary glTF", [](const FileStart& f) { return f.starts_with("glTF"); }, import_assimp_file},
+    {"FBX", [](const FileStart& f) { return f.starts_with("Kaydara FBX Binary"); }, import_assimp_file},
+    {"binary glTF", [](const FileStart& f) { return f.extension == ".glb"; }, import_assimp_file},
+    {"glTF", [](const FileStart& f) { return f.extension == ".gltf"; }, import_assimp_file},
+    {"FBX", [](const FileStart& f) { return f.extension == ".fbx"; }, import_assimp_file},
+    {"OBJ", [](const FileStart& f) { return f.extension == ".obj"; }, import_assimp_file},
+    {"JSON scene", [](const FileStart& f) { return f.extension == ".json" || (f.extension.empty() && f.first_text_is('{')); },
+     import_json_scene},
+};
 
-bool boolean(const json& value, const std::string& where) {
-    if (!value.is_boolean()) fail_at(where, "expected true or false, got " + value.dump());
-    return value.get<bool>();
-}
-
-std::string text(const json& value, const std::string& where) {
-    if (!value.is_string()) fail_at(where, "expected a string, got " + value.dump());
-    return value.get<std::string>();
-}
-
-void vector3(const json& value, const std::string& where, float out[3]) {
-    if (!value.is_array() || value.size() != 3) fail_at(where, "expected [x, y, z], got " + value.dump());
-    for (int a = 0; a < 3; ++a) out[a] = float(number(value[a], where + "[" + std::to_string(a) + "]"));
-}
-
-// Reads [[x,y,z], ...] or a flat [x, y, z, ...] array of `width`-tuples as doubles.
-std::vector<double> tuples(const json& value, const std::string& where, size_t width) {
-    if (!value.is_array()) fail_at(where, "expected an array");
-    std::vector<double> out;
-    if (!value.empty() && value[0].is_array()) {
-        for (size_t i = 0; i < value.size(); ++i) {
-            const std::string at = where + "[" + std::to_string(i) + "]";
-            if (!value[i].is_array() || value[i].size() != width)
-                fail_at(at, "expected " + std::to_string(width) + " numbers, got " + value[i].dump());
-            for (size_t k = 0; k < width; ++k) out.push_back(number(value[i][k], at));
-        }
-    } else {
-        if (value.size() % width != 0)
-            fail_at(where, "has " + std::to_string(value.size()) + " numbers, not a multiple of " + std::to_string(width));
-        for (size_t i = 0; i < value.size(); ++i) out.push_back(number(value[i], where + "[" + std::to_string(i) + "]"));
-    }
-    return out;
-}
-
-std::vector<uint32_t> indices_from(const std::vector<double>& values, const std::string& where) {
-    std::vector<uint32_t> out(values.size());
-    for (size_t i = 0; i < values.size(); ++i) {
-        double v = values[i];
-        if (!(v >= 0) || v > double(UINT32_MAX) || v != std::floor(v))
-            fail_at(where, "index " + std::to_string(i) + " is not a non-negative integer (" + std::to_string(v) + ")");
-        out[i] = uint32_t(v);
-    }
-    return out;
-}
-
-Material material_from(const json& value, const std::string& where) {
-    only_keys(value, where, {"albedo", "emission", "two_sided"});
-    Material m;
-    if (value.contains("albedo")) vector3(value["albedo"], where + ": albedo", m.albedo.data());
-    if (value.contains("emission")) vector3(value["emission"], where + ": emission", m.emission.data());
-    if (value.contains("two_sided")) m.two_sided = boolean(value["two_sided"], where + ": two_sided");
-    validate_material(m, where);
-    return m;
-}
-
-std::string directory_of(const std::string& path) {
-    size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
-void read_obj(const std::string& path, const std::string& where, std::vector<float>& vertices,
-              std::vector<uint32_t>& indices) {
-    {
-        std::ifstream probe(path);
-        if (!probe) throw Error(Status::io, where + ": cannot read OBJ file '" + path + "'");
-    }
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    if (!reader.ParseFromFile(path, config))
-        fail_at(where, "OBJ file '" + path + "': " + reader.Error());
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
-    vertices.assign(attrib.vertices.begin(), attrib.vertices.end());
-    for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-        for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f)
-            if (shape.mesh.num_face_vertices[f] != 3)
-                fail_at(where, "OBJ file '" + path + "': face " + std::to_string(f) + " of shape '" + shape.name +
-                                   "' is not a triangle after triangulation");
-        for (const tinyobj::index_t& index : shape.mesh.indices) {
-            if (index.vertex_index < 0)
-                fail_at(where, "OBJ file '" + path + "': vertex index out of range in shape '" + shape.name + "'");
-            indices.push_back(uint32_t(index.vertex_index));
-        }
-    }
-}
-
-void add_mesh(Scene& scene, const json& value, size_t index, const std::string& file) {
-    std::string where = file + ": mesh " + std::to_string(index);
-    only_keys(value, where, {"name", "obj", "vertices", "indices", "material", "materials", "triangle_materials"});
-    if (value.contains("name")) where += " ('" + text(value["name"], where + ": name") + "')";
-
-    std::vector<float> vertices;
-    std::vector<uint32_t> indices;
-    if (value.contains("obj")) {
-        if (value.contains("vertices") || value.contains("indices"))
-            fail_at(where, "has both \"obj\" and inline \"vertices\"/\"indices\"");
-        const std::string obj = text(value["obj"], where + ": obj");
-        // An absolute path is used as it is; a relative one starts at the JSON file's folder.
-        read_obj(std::filesystem::path(obj).is_absolute() ? obj : directory_of(file) + obj, where, vertices, indices);
-    } else {
-        if (!value.contains("vertices") || !value.contains("indices"))
-            fail_at(where, "needs \"obj\" or both \"vertices\" and \"indices\"");
-        for (double v : tuples(value["vertices"], where + ": vertices", 3)) vertices.push_back(float(v));
-        indices = indices_from(tuples(value["indices"], where + ": indices", 3), where + ": indices");
-    }
-
-    std::vector<Material> materials;
-    std::vector<uint32_t> triangle_materials;
-    if (value.contains("material") && value.contains("materials"))
-        fail_at(where, "has both \"material\" and \"materials\"");
-    if (value.contains("materials")) {
-        const json& list = value["materials"];
-        if (!list.is_array() || list.empty()) fail_at(where + ": materials", "expected a non-empty array");
-        for (size_t m = 0; m < list.size(); ++m)
-            materials.push_back(material_from(list[m], where + ": material " + std::to_string(m)));
-    } else {
-        materials.push_back(value.contains("material") ? material_from(value["material"], where + ": material")
-                                                       : Material());
-    }
-    if (value.contains("triangle_materials")) {
-        triangle_materials = indices_from(tuples(value["triangle_materials"], where + ": triangle_materials", 1),
-                                          where + ": triangle_materials");
-        if (triangle_materials.size() != indices.size() / 3)
-            fail_at(where, "has " + std::to_string(triangle_materials.size()) + " triangle_materials for " +
-                               std::to_string(indices.size() / 3) + " triangles");
-    }
-    scene.add_mesh(vertices.data(), vertices.size() / 3, indices.data(), indices.size() / 3, materials,
-                   triangle_materials.empty() ? nullptr : triangle_materials.data(), where);
-}
-
-void add_light(Scene& scene, const json& value, size_t index, const std::string& file) {
-    const std::string where = file + ": light " + std::to_string(index);
-    only_keys(value, where, {"type", "mode", "shadows", "color", "intensity", "position", "direction", "range",
-                             "inner_angle", "outer_angle", "name"});
-    tp_light light = default_c_light();
-    if (!value.contains("type")) fail_at(where, "needs a \"type\"");
-    const std::string type = text(value["type"], where + ": type");
-    if (type == "directional") light.type = TP_LIGHT_DIRECTIONAL;
-    else if (type == "point") light.type = TP_LIGHT_POINT;
-    else if (type == "spot") light.type = TP_LIGHT_SPOT;
-    else fail_at(where, "unknown type \"" + type + "\" (directional, point or spot)");
-    if (value.contains("mode")) {
-        const std::string mode = text(value["mode"], where + ": mode");
-        if (mode == "baked") light.mode = TP_LIGHT_MODE_BAKED;
-        else if (mode == "realtime") light.mode = TP_LIGHT_MODE_REALTIME;
-        else if (mode == "mixed") light.mode = TP_LIGHT_MODE_MIXED;
-        else fail_at(where, "unknown mode \"" + mode + "\" (baked, realtime or mixed)");
-    }
-    if (value.contains("shadows")) light.shadows = boolean(value["shadows"], where + ": shadows") ? 1 : 0;
-    if (value.contains("color")) vector3(value["color"], where + ": color", light.color);
-    if (value.contains("intensity")) light.intensity = float(number(value["intensity"], where + ": intensity"));
-    if (value.contains("position")) vector3(value["position"], where + ": position", light.position);
-    else if (light.type != TP_LIGHT_DIRECTIONAL) fail_at(where, "needs a \"position\"");
-    if (value.contains("direction")) vector3(value["direction"], where + ": direction", light.direction);
-    else if (light.type != TP_LIGHT_POINT) fail_at(where, "needs a \"direction\"");
-    if (value.contains("range")) {
-        const json& range = value["range"];
-        if (range.is_string() && range.get<std::string>() == "inf") light.range = INFINITY;
-        else light.range = float(number(range, where + ": range"));
-    }
-    if (value.contains("inner_angle")) light.inner_angle = float(number(value["inner_angle"], where + ": inner_angle"));
-    if (value.contains("outer_angle")) light.outer_angle = float(number(value["outer_angle"], where + ": outer_angle"));
-    scene.add_light(light, where);
-}
-
-void set_sky(Scene& scene, const json& value, const std::string& file) {
-    const std::string where = file + ": sky";
-    if (value.is_null()) return;
-    only_keys(value, where, {"color", "sh"});
-    if (value.contains("color") == value.contains("sh")) fail_at(where, "needs exactly one of \"color\" and \"sh\"");
-    if (value.contains("color")) {
-        float rgb[3];
-        vector3(value["color"], where + ": color", rgb);
-        scene.set_sky_color(rgb);
-    } else {
-        std::vector<double> sh = tuples(value["sh"], where + ": sh", 1);
-        if (sh.size() != 27) fail_at(where, "sh has " + std::to_string(sh.size()) + " numbers, expected 27");
-        float coefficients[27];
-        for (int i = 0; i < 27; ++i) coefficients[i] = float(sh[i]);
-        scene.set_sky_sh(coefficients);
-    }
-}
-
-void append_grid(std::vector<float>& probes, const json& value, const std::string& where) {
-    only_keys(value, where, {"min", "max", "counts"});
-    if (!value.contains("min") || !value.contains("max") || !value.contains("counts"))
-        fail_at(where, "needs \"min\", \"max\" and \"counts\"");
-    float lo[3], hi[3];
-    vector3(value["min"], where + ": min", lo);
-    vector3(value["max"], where + ": max", hi);
-    std::vector<uint32_t> counts = indices_from(tuples(value["counts"], where + ": counts", 1), where + ": counts");
-    if (counts.size() != 3 || counts[0] == 0 || counts[1] == 0 || counts[2] == 0)
-        fail_at(where, "counts must be three positive integers");
-    if (double(counts[0]) * counts[1] * counts[2] > 1e7) fail_at(where, "more than 10 million probes");
-    for (uint32_t k = 0; k < counts[2]; ++k)
-        for (uint32_t j = 0; j < counts[1]; ++j)
-            for (uint32_t i = 0; i < counts[0]; ++i) {
-                const uint32_t step[3] = {i, j, k};
-                for (int a = 0; a < 3; ++a)
-                    probes.push_back(counts[a] == 1 ? lo[a]
-                                                    : lo[a] + (hi[a] - lo[a]) * float(step[a]) / float(counts[a] - 1));
-            }
+std::string lower_extension(const std::string& path) {
+    const size_t slash = path.find_last_of("/\\"), dot = path.find_last_of('.');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string extension = path.substr(dot);
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return extension;
 }
 
 }  // namespace
 
-Scene load_scene_file(const std::string& path) {
+SceneImporter importer_for(const std::string& path, std::string* format) {
     std::ifstream in(path, std::ios::binary);
     if (!in) throw Error(Status::io, "cannot read scene file '" + path + "'");
-    std::stringstream contents;
-    contents << in.rdbuf();
-    // Other formats by their magic bytes: a Quake 3 level (bake/quake3_scene.h).
-    const std::string bytes = contents.str();
-    if (looks_like_quake3_bsp(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size())) {
-        Scene scene;
-        add_quake3_level(scene, parse_quake3_bsp(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), path));
-        return scene;
-    }
-    json root;
-    try {
-        root = json::parse(bytes);
-    } catch (const json::parse_error& e) {
-        throw Error(Status::scene, path + ": malformed JSON at byte " + std::to_string(e.byte) + ": " + e.what());
-    }
-    only_keys(root, path, {"meshes", "lights", "sky", "probes", "probe_grids", "name", "description"});
+    FileStart start;
+    char bytes[64];
+    in.read(bytes, sizeof bytes);
+    start.bytes.assign(bytes, size_t(in.gcount()));
+    start.extension = lower_extension(path);
+    for (const SceneFormat& f : kFormats)
+        if (f.recognises(start)) {
+            if (format) *format = f.name;
+            return f.import;
+        }
+    throw Error(Status::scene, path + ": not a scene file this library reads (by its content or its extension '" +
+                                   start.extension + "'): glTF 2.0 (.gltf, .glb), FBX (.fbx), OBJ (.obj), a Quake 3 level (.bsp) or a JSON scene (.json)");
+}
 
+Scene load_scene_file(const std::string& path, const SceneLoadOptions& options) {
+    if (!(std::isfinite(options.scale) && options.scale >= 0))
+        throw Error(Status::invalid_argument, "the scale must be 0 (the file's own unit) or positive, got " + std::to_string(options.scale));
+    if (options.up != UpAxis::file && !is_axis(options.up))
+        throw Error(Status::invalid_argument, "unknown up axis " + std::to_string(uint32_t(options.up)) + " (TP_UP_*)");
+    std::string format;
+    const SceneImporter import = importer_for(path, &format);
+    SceneImport request;
+    request.path = path;
+    request.label = path;
+    request.format = format;
+    request.scale = options.scale;
+    request.file_up = options.up;
     Scene scene;
-    try {
-        if (root.contains("meshes")) {
-            const json& meshes = root["meshes"];
-            if (!meshes.is_array()) fail_at(path + ": meshes", "expected an array");
-            for (size_t i = 0; i < meshes.size(); ++i) add_mesh(scene, meshes[i], i, path);
-        }
-        if (root.contains("lights")) {
-            const json& lights = root["lights"];
-            if (!lights.is_array()) fail_at(path + ": lights", "expected an array");
-            for (size_t i = 0; i < lights.size(); ++i) add_light(scene, lights[i], i, path);
-        }
-        if (root.contains("sky")) set_sky(scene, root["sky"], path);
-        std::vector<float> probes;
-        if (root.contains("probes"))
-            for (double v : tuples(root["probes"], path + ": probes", 3)) probes.push_back(float(v));
-        if (root.contains("probe_grids")) {
-            const json& grids = root["probe_grids"];
-            if (!grids.is_array()) fail_at(path + ": probe_grids", "expected an array");
-            for (size_t g = 0; g < grids.size(); ++g)
-                append_grid(probes, grids[g], path + ": probe_grids[" + std::to_string(g) + "]");
-        }
-        scene.set_probes(probes.data(), probes.size() / 3);
-    } catch (const json::exception& e) {
-        throw Error(Status::scene, path + ": " + e.what());
-    }
+    import(scene, request);
     if (scene.empty()) throw Error(Status::scene, path + ": the scene is empty (no mesh, light or sky)");
     return scene;
 }

@@ -1,18 +1,17 @@
 #include "bake/store_builder.h"
 
-#include "bake/cell_order.h"
 #include "bake/delaunay.h"
-#include "bake/exact_orientation.h"
 #include "bake/flat_delaunay.h"
-#include "bake/hull.h"
 #include "bake/input_screening.h"
 #include "bake/leak_edges.h"
-#include "bake/line_segments.h"
-#include "bake/outer_cells.h"
 #include "bake/probe_merge.h"
 #include "bake/set_dimension.h"
-#include "bake/start_grid.h"
+#include "core/canonical_cells.h"
+#include "core/cell_order.h"
+#include "core/cell_rebuild.h"
 #include "core/error.h"
+#include "core/hull_normals.h"
+#include "core/start_grid.h"
 #include "core/store_format.h"
 
 #include <Eigen/Geometry>
@@ -21,20 +20,15 @@
 #include <cmath>
 #include <numeric>
 #include <string>
+#include <tuple>
 #include <utility>
 
 namespace tetprobe {
 
 namespace {
 
-void report_progress(const BuildSettings& settings, float fraction, const char* stage) {
-    if (settings.progress && settings.progress(settings.progress_user, fraction, stage) != 0) {
-        throw Error(Status::cancelled, "build cancelled");
-    }
-}
-
 void check_settings(const BuildSettings& settings) {
-    if (settings.flags & ~uint32_t(TP_BUILD_NO_EXTRAPOLATION | TP_BUILD_INDEX32 | TP_BUILD_COMPACT)) {
+    if (settings.flags & ~kBuildFlags) {
         throw Error(Status::invalid_argument, "unknown build flags " + std::to_string(settings.flags));
     }
     if (!(settings.merge_tolerance >= 0 && settings.merge_tolerance <= 1)) {
@@ -98,116 +92,93 @@ SetShape merge_and_detect(const std::vector<Eigen::Vector3d>& local, const std::
     return detect_set_dimension(gather_canonical(local, groups.kept, rank), diagonal, settings.flat_tolerance);
 }
 
-// Triangulation of the stored probes in their own dimension.
-SimplexMesh triangulate(const std::vector<Eigen::Vector3d>& points, const SetShape& shape) {
-    switch (shape.dimension) {
-        case 0: {
-            SimplexMesh mesh;
-            mesh.dimension = 0;
-            mesh.add_cell({0, kNone32, kNone32, kNone32}, kNoSlots);
-            return mesh;
+// Probes of a flat set at the same plane coordinates, or of a line at the same coordinate along its
+// axis, merge into the first (stored order): the cells cannot tell them apart (their offsets across
+// the plane or line were too large to merge them in the set's own coordinates, or no merge tolerance
+// was given), and a cell between them would hold no point.
+void merge_equal_decided_coordinates(const std::vector<Eigen::Vector3d>& points, const SetShape& shape,
+                                     ProbeGroups& groups) {
+    std::vector<uint32_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::vector<Eigen::Vector2d> uv(points.size());
+    for (size_t j = 0; j < points.size(); ++j)
+        uv[j] = shape.dimension == 2 ? shape.plane_coordinates(points[j])
+                                     : Eigen::Vector2d(double(float(points[j][shape.line_axis()])), 0.0);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        return std::tie(uv[a].x(), uv[a].y(), a) < std::tie(uv[b].x(), uv[b].y(), b);
+    });
+    ProbeMerge merge;
+    merge.group_of.resize(points.size());
+    std::iota(merge.group_of.begin(), merge.group_of.end(), 0u);
+    bool merged = false;
+    for (size_t i = 1; i < order.size(); ++i)
+        if (uv[order[i]] == uv[order[i - 1]]) {
+            merge.group_of[order[i]] = merge.group_of[order[i - 1]];
+            merged = true;
         }
-        case 1: {
-            // Ordered by the stored coordinate along the line's main axis (what the run time compares).
-            std::vector<double> along(points.size());
-            for (size_t j = 0; j < points.size(); ++j) along[j] = points[j][shape.line_axis()];
-            return line_segments(along);
-        }
-        case 2: {
+    if (!merged) return;
+    std::vector<uint32_t> compact(points.size(), kNone32);
+    for (uint32_t j = 0; j < points.size(); ++j) {
+        if (merge.group_of[j] != j) continue;
+        compact[j] = uint32_t(merge.survivors.size());
+        merge.survivors.push_back(j);
+    }
+    for (auto& g : merge.group_of) g = compact[g];
+    groups.apply(merge);
+}
+
+// Whether two meshes in canonical form hold the same cells (in any order): b's cells are filed in an
+// open-addressing table and every cell of a must be found there once.
+bool same_cells(const SimplexMesh& a, const SimplexMesh& b) {
+    if (a.cell_count() != b.cell_count()) return false;
+    size_t capacity = 16;
+    while (capacity < 2 * b.cell_count()) capacity *= 2;
+    std::vector<uint32_t> table(capacity, kNone32);  // cell of b, or empty
+    std::vector<char> found(b.cell_count(), 0);
+    auto slot_of = [&](const CellSlots& v) {
+        uint64_t h = 0;
+        for (uint32_t x : v) h = (h ^ x) * 0x9E3779B97F4A7C15ull;
+        return size_t(h >> 20) & (capacity - 1);
+    };
+    for (uint32_t c = 0; c < b.cell_count(); ++c) {
+        size_t at = slot_of(b.vertices[c]);
+        while (table[at] != kNone32) at = (at + 1) & (capacity - 1);
+        table[at] = c;
+    }
+    for (const CellSlots& v : a.vertices) {
+        size_t at = slot_of(v);
+        while (table[at] != kNone32 && b.vertices[table[at]] != v) at = (at + 1) & (capacity - 1);
+        if (table[at] == kNone32 || found[table[at]]) return false;
+        found[table[at]] = 1;
+    }
+    return true;
+}
+
+// The inner cells of the stored probes in their own dimension, in canonical form: TetGen's Delaunay
+// (a flat set's under an apex), which must be the exact one core rebuilds at load for a layout that
+// keeps no cells (core/cell_rebuild.h). Where TetGen 1.5.0 gives other cells (it dies on some
+// degenerate sets, and has left out a probe on a straight stretch of a flat set's boundary) or none,
+// the store keeps core's, so that every layout stores what a rebuild gives.
+SimplexMesh triangulate(const std::vector<Eigen::Vector3d>& points, const std::vector<float>& stored, const SetShape& shape,
+                        uint32_t axis) {
+    const uint32_t d = shape.dimension, count = uint32_t(points.size());
+    SimplexMesh exact = inner_cells(stored.data(), count, d, axis);
+    if (d < 2) return exact;  // one cell, or segments: core's code at bake and load alike
+    SimplexMesh mesh;
+    try {
+        if (d == 3) {
+            mesh = delaunay_tetrahedralize(points);
+        } else {
             std::vector<Eigen::Vector2d> uv(points.size());
             for (size_t j = 0; j < points.size(); ++j) uv[j] = shape.plane_coordinates(points[j]);
-            return delaunay_triangulate_plane(uv);
+            mesh = delaunay_triangulate_plane(uv);
         }
-        default: return delaunay_tetrahedralize(points);
+    } catch (const Error& e) {
+        if (e.status() != Status::tetgen) throw;
+        return exact;
     }
-}
-
-// TetGen may drop a point it finds coincident with another; such a probe joins its nearest used
-// neighbour, so that every stored probe belongs to a cell.
-void merge_unused_probes(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& points, ProbeGroups& groups) {
-    std::vector<char> used(points.size(), 0);
-    for (const auto& cell : mesh.vertices) {
-        for (uint32_t v : cell) {
-            if (v < points.size()) used[v] = 1;
-        }
-    }
-    if (std::all_of(used.begin(), used.end(), [](char u) { return u != 0; })) return;
-    std::vector<uint32_t> compact(points.size(), kNone32);
-    uint32_t next = 0;
-    for (size_t j = 0; j < points.size(); ++j) {
-        if (used[j]) compact[j] = next++;
-    }
-    for (size_t j = 0; j < points.size(); ++j) {
-        if (used[j]) continue;
-        double best = -1;
-        for (size_t i = 0; i < points.size(); ++i) {
-            if (!used[i]) continue;
-            const double d2 = (points[i] - points[j]).squaredNorm();
-            if (best < 0 || d2 < best) {
-                best = d2;
-                compact[j] = compact[i];
-            }
-        }
-    }
-    ProbeMerge merge;
-    merge.group_of = compact;
-    for (size_t j = 0; j < points.size(); ++j) {
-        if (used[j]) merge.survivors.push_back(uint32_t(j));
-    }
-    groups.apply(merge);
-    for (auto& cell : mesh.vertices) {
-        for (auto& v : cell) {
-            if (v < points.size()) v = compact[v];
-        }
-    }
-}
-
-// Gives every inner cell positive orientation, decided exactly on the stored coordinates
-// (store_format.h): 3D orient3d(v0, v1, v2, v3) > 0, 2D orient2d(v0, v1, v2) > 0 in the plane
-// coordinates, 1D v0 < v1 along the line's axis. TetGen winds all its cells alike, so its convention
-// is read from the signs and turned into ours for every cell by one swap of slots 0 and 1 (with their
-// neighbours); a cell of zero orientation (exactly flat on the stored floats) keeps that consistent
-// winding. Returns the number of flat cells.
-size_t orient_cells(SimplexMesh& mesh, const std::vector<Eigen::Vector3d>& p, const SetShape& shape) {
-    const size_t cells = mesh.cell_count();
-    if (mesh.dimension == 0) return 0;
-    std::vector<int8_t> sign(cells);
-    if (mesh.dimension == 3) {
-        for (size_t c = 0; c < cells; ++c) {
-            const CellSlots& v = mesh.vertices[c];
-            sign[c] = int8_t(orient3d_sign(p[v[0]].data(), p[v[1]].data(), p[v[2]].data(), p[v[3]].data()));
-        }
-    } else if (mesh.dimension == 2) {
-        std::vector<Eigen::Vector2d> uv(p.size());
-        for (size_t j = 0; j < p.size(); ++j) uv[j] = shape.plane_coordinates(p[j]);
-        for (size_t c = 0; c < cells; ++c) {
-            const CellSlots& v = mesh.vertices[c];
-            sign[c] = int8_t(orient2d_sign(uv[v[0]].data(), uv[v[1]].data(), uv[v[2]].data()));
-        }
-    } else {
-        const uint32_t axis = shape.line_axis();
-        for (size_t c = 0; c < cells; ++c) {
-            const CellSlots& v = mesh.vertices[c];
-            sign[c] = int8_t((p[v[1]][axis] > p[v[0]][axis]) - (p[v[1]][axis] < p[v[0]][axis]));
-        }
-    }
-    size_t positive = 0, negative = 0;
-    for (int8_t s : sign) {
-        positive += s > 0;
-        negative += s < 0;
-    }
-    // A flat cell follows the majority; any other cell is swapped exactly when it is negative (a
-    // cell against the majority would mean TetGen wound cells differently: it is righted alone).
-    const bool flip_flat = negative > positive;
-    size_t flat = 0;
-    for (size_t c = 0; c < cells; ++c) {
-        flat += sign[c] == 0;
-        if (sign[c] < 0 || (sign[c] == 0 && flip_flat)) {
-            std::swap(mesh.vertices[c][0], mesh.vertices[c][1]);
-            std::swap(mesh.neighbours[c][0], mesh.neighbours[c][1]);
-        }
-    }
-    return flat;
+    canonicalise_cells(mesh, stored.data(), axis);
+    return same_cells(mesh, exact) ? mesh : exact;
 }
 
 // Occlusion of the stored probes: the rounded mean over the input probes merged into each; unused
@@ -236,7 +207,7 @@ void store_occlusion(const BuildSettings& settings, size_t count, StoreData& dat
 StoreData build_store_data(const float* positions, size_t position_stride, const float* sh, size_t sh_stride,
                            size_t count, const BuildSettings& settings) {
     check_settings(settings);
-    report_progress(settings, 0.0f, "screening");
+    settings.progress.report(0.0f, "screening");
     const ScreenedProbes input = screen_probe_input(positions, position_stride, sh, sh_stride, count);
 
     // Local frame: centred on the centre of the probes' bounding box (which, unlike a centroid sum,
@@ -261,7 +232,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     std::vector<uint32_t> rank(count);
     for (uint32_t r = 0; r < count; ++r) rank[canonical[r]] = r;
 
-    report_progress(settings, 0.1f, "merging");
+    settings.progress.report(0.1f, "merging");
     ProbeGroups groups;
     groups.kept.resize(count);
     std::iota(groups.kept.begin(), groups.kept.end(), 0u);
@@ -303,43 +274,24 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         groups.apply(reorder);
     }
 
-    report_progress(settings, 0.2f, "triangulating");
-    std::vector<Eigen::Vector3d> points = gather(local, groups.kept);
-    SimplexMesh mesh = triangulate(points, shape);
-    const size_t before = points.size();
-    merge_unused_probes(mesh, points, groups);
-    if (groups.kept.size() != before) points = gather(local, groups.kept);
-    orient_cells(mesh, points, shape);
+    settings.progress.report(0.2f, "triangulating");
+    const uint32_t axis = shape.dimension == 2 ? shape.dropped_axis() : shape.dimension == 1 ? shape.line_axis() : 0u;
+    if (shape.dimension == 1 || shape.dimension == 2) merge_equal_decided_coordinates(gather(local, groups.kept), shape, groups);
+    const std::vector<Eigen::Vector3d> points = gather(local, groups.kept);
+    std::vector<float> stored(points.size() * 3);
+    for (size_t j = 0; j < points.size(); ++j)
+        for (int a = 0; a < 3; ++a) stored[j * 3 + size_t(a)] = float(points[j][a]);
+    SimplexMesh mesh = triangulate(points, stored, shape, axis);
 
-    report_progress(settings, 0.6f, "hull");
-    Hull hull;
-    if (shape.dimension >= 1) {
-        hull = find_hull(mesh, points, shape);
-    } else {
-        hull.vertex_normals.assign(points.size(), Eigen::Vector3d::Zero());
-    }
-    const bool extrapolate = !(settings.flags & TP_BUILD_NO_EXTRAPOLATION) && shape.dimension >= 1;
-    OuterCells outer;
-    if (extrapolate) outer = build_outer_cells(mesh, hull);
-
-    report_progress(settings, 0.7f, "storing");
+    settings.progress.report(0.7f, "storing");
     StoreData data;
-    data.flags = ((settings.flags & TP_BUILD_NO_EXTRAPOLATION) ? kFlagNoExtrapolation : 0u) |
-                 ((settings.flags & TP_BUILD_INDEX32) ? kFlagIndex32 : 0u) |
-                 ((settings.flags & TP_BUILD_COMPACT) ? kFlagCompact : 0u);
+    data.flags = settings.flags;
     data.dimension = shape.dimension;
-    data.axis = shape.dimension == 2 ? shape.dropped_axis() : shape.dimension == 1 ? shape.line_axis() : 0u;
+    data.axis = axis;
     for (int a = 0; a < 3; ++a) data.origin[a] = origin[a];
     data.input_probe_count = uint32_t(count);
     const size_t probes = points.size();
-    data.positions.resize(probes * 3);
-    data.normals.resize(probes * 3);
-    for (size_t j = 0; j < probes; ++j) {
-        for (int a = 0; a < 3; ++a) {
-            data.positions[j * 3 + size_t(a)] = float(points[j][a]);
-            data.normals[j * 3 + size_t(a)] = float(hull.vertex_normals[j][a]);
-        }
-    }
+    data.positions = stored;
     // A stored probe's SH is the mean of every input probe merged into it.
     std::vector<double> sh_sum(probes * 27, 0.0);
     std::vector<uint32_t> members(probes, 0);
@@ -355,18 +307,7 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
     data.probe_source = groups.kept;
     data.input_remap = groups.group;
 
-    data.inner_cell_count = uint32_t(mesh.cell_count());
-    const size_t cells = mesh.cell_count() + outer.vertices.size();
-    data.cell_vertices.resize(cells * 4);
-    data.cell_neighbours.resize(cells * 4);
-    for (size_t c = 0; c < mesh.cell_count(); ++c) {
-        std::copy_n(mesh.vertices[c].begin(), 4, &data.cell_vertices[c * 4]);
-        std::copy_n(mesh.neighbours[c].begin(), 4, &data.cell_neighbours[c * 4]);
-    }
-    for (size_t c = 0, at = mesh.cell_count() * 4; c < outer.vertices.size(); ++c, at += 4) {
-        std::copy_n(outer.vertices[c].begin(), 4, &data.cell_vertices[at]);
-        std::copy_n(outer.neighbours[c].begin(), 4, &data.cell_neighbours[at]);
-    }
+    store_cells(std::move(mesh), data);
     for (int a = 0; a < 3; ++a) {
         data.bounds_min[a] = data.positions[size_t(a)];
         data.bounds_max[a] = data.positions[size_t(a)];
@@ -378,16 +319,21 @@ StoreData build_store_data(const float* positions, size_t position_stride, const
         }
     }
 
-    report_progress(settings, 0.85f, "ordering");
+    settings.progress.report(0.85f, "ordering");
     order_cells_for_locality(data);
+    // Hull normals from the ordered cells, so that they depend on the cells alone.
+    const Eigen::Vector3d set_direction = shape.dimension == 2 ? shape.axes.col(2) : shape.axes.col(0);
+    const std::vector<Eigen::Vector3d> normals = hull_vertex_normals(data, set_direction);
+    data.normals.resize(probes * 3);
+    for (size_t j = 0; j < probes; ++j)
+        for (int a = 0; a < 3; ++a) data.normals[j * 3 + size_t(a)] = float(normals[j][a]);
     if (settings.occlusion) store_occlusion(settings, count, data);
     if (settings.scene) {
-        report_progress(settings, 0.87f, "leak control");
-        add_leak_edges(*settings.scene, data);
+        add_leak_edges(*settings.scene, data, settings.threads, settings.progress.part(0.87f, 0.9f));
     }
-    report_progress(settings, 0.9f, "grid");
+    settings.progress.report(0.9f, "grid");
     build_start_grid(data);
-    report_progress(settings, 1.0f, "done");
+    settings.progress.report(1.0f, "done");
     return data;
 }
 

@@ -5,21 +5,25 @@
 // a merged group survives (the first given) and, within the merge tolerance, greedy merge chains.
 #pragma once
 
+#include "bake/progress.h"
 #include "bake/scene.h"
-#include "capi/tetprobe.h"
 #include "core/option_defaults.h"
 #include "core/store_data.h"
+#include "core/store_format.h"
 
 #include <cstddef>
 
 namespace tetprobe {
 
+// The store flags a build takes (the C ABI's TP_BUILD_* have the same values).
+constexpr uint32_t kBuildFlags = kFlagNoExtrapolation | kFlagIndex32 | kFlagCompact;
+
 struct BuildSettings {
-    uint32_t flags = 0;              // TP_BUILD_* (the same bits as the store's kFlag*)
+    uint32_t flags = 0;              // kBuildFlags bits
     double merge_tolerance = kDefaultMergeTolerance;  // fraction of the bounding-box diagonal
     double flat_tolerance = kDefaultFlatTolerance;    // fraction of the bounding-box diagonal
-    tp_progress_fn progress = nullptr;
-    void* progress_user = nullptr;
+    uint32_t threads = 0;            // leak control's rays (0 = all cores); the result does not depend on it
+    Progress progress;
     // Optional scene data. occlusion: 4 bytes per input probe at occlusion_stride bytes (channels at
     // and above occlusion_lights are ignored); a merged probe stores the rounded mean of its group.
     const uint8_t* occlusion = nullptr;

@@ -48,6 +48,34 @@ TP_API tp_status tp_scene_load_file(const char*, tp_scene** out_scene) {
     TP_API_END
 }
 
+TP_API tp_status tp_scene_load_file_ex(const char*, const tp_scene_load_options*, tp_scene** out_scene) {
+    TP_API_BEGIN
+    if (out_scene) *out_scene = nullptr;
+    return unavailable("tp_scene_load_file_ex");
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_notes(const tp_scene*, char* text, size_t text_capacity, size_t* out_size) {
+    TP_API_BEGIN
+    if (text && text_capacity > 0) text[0] = '\0';
+    if (out_size) *out_size = 0;
+    return unavailable("tp_scene_notes");
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_up(const tp_scene*, uint32_t* out_up) {
+    TP_API_BEGIN
+    if (out_up) *out_up = TP_UP_FILE;
+    return unavailable("tp_scene_up");
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_set_up(tp_scene*, uint32_t) {
+    TP_API_BEGIN
+    return unavailable("tp_scene_set_up");
+    TP_API_END
+}
+
 TP_API tp_status tp_scene_add_mesh(tp_scene*, const float*, size_t, const uint32_t*, size_t, const tp_material*,
                                    size_t, const uint32_t*, uint32_t*) {
     TP_API_BEGIN

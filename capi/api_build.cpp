@@ -1,5 +1,6 @@
 // tp_store_build: the C ABI of the store builder (bake-time library only).
 #include "bake/store_builder.h"
+#include "capi/bake_structs.h"
 #include "capi/boundary.h"
 #include "capi/scene_handle.h"
 #include "capi/strides.h"
@@ -33,14 +34,15 @@ tetprobe::BuildSettings read_build_options(const tp_build_options* options) {
                               "options->struct_size " + std::to_string(options->struct_size) +
                                   " is too small (call tp_build_options_init)");
     }
-    settings.flags = options->flags;
+    settings.flags = options->flags;  // TP_BUILD_* are the store's kFlag* bits (boundary.h)
     if (TP_OPTION_FIELD(options, merge_tolerance)) settings.merge_tolerance = options->merge_tolerance;
     if (TP_OPTION_FIELD(options, flat_tolerance)) settings.flat_tolerance = options->flat_tolerance;
-    if (TP_OPTION_FIELD(options, progress)) settings.progress = options->progress;
-    if (TP_OPTION_FIELD(options, progress_user)) settings.progress_user = options->progress_user;
+    if (TP_OPTION_FIELD(options, progress))
+        settings.progress = tetprobe::progress_from_c(
+            options->progress, TP_OPTION_FIELD(options, progress_user) ? options->progress_user : nullptr);
     if (TP_OPTION_FIELD(options, occlusion_lights) && options->occlusion) {
         settings.occlusion = options->occlusion;
-        settings.occlusion_stride = tetprobe::resolve_stride(options->occlusion_stride, 4, "occlusion_stride");
+        settings.occlusion_stride = options->occlusion_stride;
         settings.occlusion_lights = options->occlusion_lights;
     }
     if (TP_OPTION_FIELD(options, scene) && options->scene) settings.scene = &options->scene->scene;
@@ -57,13 +59,14 @@ TP_API tp_status tp_store_build(const float* positions, size_t position_stride, 
     TP_REQUIRE_NOT_NULL(out_store);
     *out_store = nullptr;
     if (probe_count == 0) return tetprobe::fail(TP_ERROR_DEGENERATE, "no probes: a store needs at least one probe");
-    TP_REQUIRE_NOT_NULL(positions);
-    position_stride = tetprobe::resolve_stride(position_stride, kPositionBytes, "position_stride");
-    sh_stride = sh ? tetprobe::resolve_stride(sh_stride, kShBytes, "sh_stride") : kShBytes;
-    tetprobe::require_addressable(probe_count, position_stride, kPositionBytes, "positions");
-    if (sh) tetprobe::require_addressable(probe_count, sh_stride, kShBytes, "sh");
-    const tetprobe::BuildSettings settings = read_build_options(options);
-    if (settings.occlusion) tetprobe::require_addressable(probe_count, settings.occlusion_stride, 4, "occlusion");
+    using tetprobe::checked_buffer;
+    position_stride =
+        checked_buffer(positions, "positions", probe_count, "probe_count", position_stride, "position_stride", kPositionBytes);
+    sh_stride = sh ? checked_buffer(sh, "sh", probe_count, "probe_count", sh_stride, "sh_stride", kShBytes) : kShBytes;
+    tetprobe::BuildSettings settings = read_build_options(options);
+    if (settings.occlusion)
+        settings.occlusion_stride = checked_buffer(settings.occlusion, "options->occlusion", probe_count, "probe_count",
+                                                   settings.occlusion_stride, "options->occlusion_stride", 4);
 
     const tetprobe::StoreData data =
         tetprobe::build_store_data(positions, position_stride, sh, sh_stride, probe_count, settings);

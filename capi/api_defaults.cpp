@@ -29,6 +29,14 @@ TP_API tp_status tp_placement_options_init(tp_placement_options* options) {
     TP_API_END
 }
 
+TP_API tp_status tp_store_load_options_init(tp_store_load_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(options);
+    *options = tetprobe::default_store_load_options();
+    return TP_OK;
+    TP_API_END
+}
+
 TP_API tp_status tp_material_init(tp_material* material) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(material);
@@ -41,6 +49,14 @@ TP_API tp_status tp_light_init(tp_light* light) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(light);
     *light = tetprobe::default_light();
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_load_options_init(tp_scene_load_options* options) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(options);
+    *options = tetprobe::default_scene_load_options();
     return TP_OK;
     TP_API_END
 }

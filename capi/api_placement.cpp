@@ -1,4 +1,5 @@
 // Probe placement and probes inside geometry (full library only).
+#include "bake_structs.h"
 #include "boundary.h"
 #include "scene_handle.h"
 #include "strides.h"
@@ -26,6 +27,11 @@ tp_status read_positions(const float* positions, size_t stride, size_t count, st
 // The struct before light_clearance was added: a caller built against it gets that field's default.
 constexpr size_t kFirstPlacementOptionsSize = offsetof(tp_placement_options, light_clearance);
 
+static_assert(TP_PLACEMENT_WHOLE == uint32_t(tetprobe::PlacementMode::whole) &&
+                  TP_PLACEMENT_WALKABLE == uint32_t(tetprobe::PlacementMode::walkable),
+              "TP_PLACEMENT_* must equal PlacementMode");
+
+// The one reading of tp_placement_options.
 tp_status read_placement_options(const tp_placement_options* options, tetprobe::PlacementSettings& settings) {
     if (!options) return TP_OK;
     if (options->struct_size < kFirstPlacementOptionsSize)
@@ -45,8 +51,7 @@ tp_status read_placement_options(const tp_placement_options* options, tetprobe::
     settings.bounces = options->bounces;
     settings.seed = options->seed;
     settings.threads = options->threads;
-    settings.progress = options->progress;
-    settings.progress_user = options->progress_user;
+    settings.progress = tetprobe::progress_from_c(options->progress, options->progress_user);
     if (options->struct_size >= offsetof(tp_placement_options, light_clearance) + sizeof(float))
         settings.light_clearance = options->light_clearance;
     return TP_OK;
@@ -77,6 +82,9 @@ TP_API tp_status tp_place_probes(const tp_scene* scene, const tp_placement_optio
     TP_REQUIRE_NOT_NULL(out_count);
     *out_count = 0;
     if (out_curve_points) *out_curve_points = 0;
+    tetprobe::checked_packed(out_positions, "out_positions", capacity, "capacity", 3 * sizeof(float));
+    if (out_error_curve)
+        tetprobe::checked_packed(out_error_curve, "out_error_curve", curve_capacity, "curve_capacity", 2 * sizeof(float));
     tetprobe::PlacementSettings settings;
     if (tp_status s = read_placement_options(options, settings)) return s;
     const tetprobe::Placement placement = tetprobe::place_probes(scene->scene, settings);
@@ -106,7 +114,7 @@ TP_API tp_status tp_find_inside_probes(const tp_scene* scene, const float* posit
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(out_count);
     *out_count = 0;
-    if (capacity > 0) TP_REQUIRE_NOT_NULL(out_indices);
+    tetprobe::checked_packed(out_indices, "out_indices", capacity, "capacity", sizeof(uint32_t));
     std::vector<float> probes;
     if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
     const std::vector<uint32_t> inside = tetprobe::find_inside_probes(scene->scene, probes, 0);
@@ -126,7 +134,7 @@ TP_API tp_status tp_fix_inside_probes(const tp_scene* scene, const float* positi
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(out_count);
     *out_count = 0;
-    if (capacity > 0) TP_REQUIRE_NOT_NULL(out_positions);
+    tetprobe::checked_packed(out_positions, "out_positions", capacity, "capacity", 3 * sizeof(float));
     if (mode != TP_INSIDE_DROP && mode != TP_INSIDE_PUSH)
         return fail(TP_ERROR_INVALID_ARGUMENT, "unknown mode " + std::to_string(mode) + " (TP_INSIDE_DROP or TP_INSIDE_PUSH)");
     std::vector<float> probes;

@@ -1,4 +1,5 @@
 // Scenes, the effects plan and the lighting bake (full library only).
+#include "bake_structs.h"
 #include "boundary.h"
 #include "grown_structs.h"
 #include "scene_handle.h"
@@ -26,6 +27,7 @@ tp_status read_positions(const float* positions, size_t stride, size_t count, st
     return TP_OK;
 }
 
+// The one reading of tp_bake_options (tp_bake, tp_bake_plan, tp_bake_occlusion).
 tp_status read_options(const tp_bake_options* options, tetprobe::BakeSettings& settings) {
     if (!options) return TP_OK;
     if (options->struct_size < sizeof(tp_bake_options))
@@ -38,8 +40,7 @@ tp_status read_options(const tp_bake_options* options, tetprobe::BakeSettings& s
     settings.seed = options->seed;
     settings.threads = options->threads;
     settings.culling = !(options->flags & TP_BAKE_NO_CULLING);
-    settings.progress = options->progress;
-    settings.progress_user = options->progress_user;
+    settings.progress = tetprobe::progress_from_c(options->progress, options->progress_user);
     return TP_OK;
 }
 
@@ -64,12 +65,49 @@ TP_API tp_status tp_scene_release(tp_scene* scene) {
 }
 
 TP_API tp_status tp_scene_load_file(const char* path, tp_scene** out_scene) {
+    return tp_scene_load_file_ex(path, nullptr, out_scene);
+}
+
+TP_API tp_status tp_scene_load_file_ex(const char* path, const tp_scene_load_options* options, tp_scene** out_scene) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(path);
     TP_REQUIRE_NOT_NULL(out_scene);
     *out_scene = nullptr;
-    tetprobe::Scene loaded = tetprobe::load_scene_file(path);
+    tetprobe::Scene loaded = tetprobe::load_scene_file(path, tetprobe::scene_load_options_from_c(options));
     *out_scene = new tp_scene{std::move(loaded)};
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_notes(const tp_scene* scene, char* text, size_t text_capacity, size_t* out_size) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    if (text && text_capacity > 0) text[0] = '\0';
+    std::string notes;
+    for (const std::string& note : scene->scene.notes()) notes += note + "\n";
+    if (out_size) *out_size = notes.size() + 1;
+    if (!text) return TP_OK;
+    if (notes.size() + 1 > text_capacity)
+        return fail(TP_ERROR_BUFFER_TOO_SMALL, "the notes need " + std::to_string(notes.size() + 1) +
+                                                   " bytes, text_capacity is " + std::to_string(text_capacity));
+    std::memcpy(text, notes.c_str(), notes.size() + 1);
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_up(const tp_scene* scene, uint32_t* out_up) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    TP_REQUIRE_NOT_NULL(out_up);
+    *out_up = uint32_t(scene->scene.up());
+    return TP_OK;
+    TP_API_END
+}
+
+TP_API tp_status tp_scene_set_up(tp_scene* scene, uint32_t up) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    scene->scene.set_up(static_cast<tetprobe::UpAxis>(up));
     return TP_OK;
     TP_API_END
 }
@@ -84,6 +122,12 @@ TP_API tp_status tp_scene_add_mesh(tp_scene* scene, const float* vertices, size_
     TP_REQUIRE_NOT_NULL(indices);
     TP_REQUIRE_NOT_NULL(materials);
     if (material_count == 0) return fail(TP_ERROR_INVALID_ARGUMENT, "material_count is 0");
+    tetprobe::checked_packed(vertices, "vertices", vertex_count, "vertex_count", 3 * sizeof(float));
+    tetprobe::checked_packed(indices, "indices", triangle_count, "triangle_count", 3 * sizeof(uint32_t));
+    tetprobe::checked_packed(materials, "materials", material_count, "material_count", sizeof(tp_material));
+    if (triangle_materials)
+        tetprobe::checked_packed(triangle_materials, "triangle_materials", triangle_count, "triangle_count",
+                                 sizeof(uint32_t));
     const std::string label = "mesh " + std::to_string(scene->scene.meshes().size());
     std::vector<tetprobe::Material> converted;
     for (size_t m = 0; m < material_count; ++m)
@@ -99,7 +143,8 @@ TP_API tp_status tp_scene_add_light(tp_scene* scene, const tp_light* light, uint
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(light);
-    uint32_t index = scene->scene.add_light(*light);
+    const std::string label = "light " + std::to_string(scene->scene.lights().size());
+    uint32_t index = scene->scene.add_light(tetprobe::light_from_c(*light, label), label);
     if (out_light) *out_light = index;
     return TP_OK;
     TP_API_END
@@ -137,7 +182,7 @@ TP_API tp_status tp_scene_probes(const tp_scene* scene, const float** out_positi
 TP_API tp_status tp_scene_set_probes(tp_scene* scene, const float* positions, size_t count) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
-    if (count > 0) TP_REQUIRE_NOT_NULL(positions);
+    tetprobe::checked_packed(positions, "positions", count, "count", 3 * sizeof(float));
     scene->scene.set_probes(positions, count);
     return TP_OK;
     TP_API_END
@@ -162,6 +207,7 @@ TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, siz
     constexpr size_t kFirstPlanSize = offsetof(tp_effects_plan, inside_probes);
     if (plan->struct_size < kFirstPlanSize)
         return fail(TP_ERROR_INVALID_ARGUMENT, "plan->struct_size is not set to sizeof(tp_effects_plan)");
+    if (text) tetprobe::checked_packed(text, "text", text_capacity, "text_capacity", 1);
     if (text && text_capacity > 0) text[0] = '\0';
     tetprobe::BakeSettings settings;
     if (tp_status s = read_options(options, settings)) return s;
@@ -204,15 +250,15 @@ TP_API tp_status tp_bake(const tp_scene* scene, const float* positions, size_t p
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(out_sh);
-    sh_stride = tetprobe::resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
     tetprobe::BakeSettings settings;
     if (tp_status s = read_options(options, settings)) return s;
     std::vector<float> probes;
     if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
+    sh_stride = tetprobe::checked_buffer(out_sh, "out_sh", count, "count", sh_stride, "sh_stride", 27 * sizeof(float));
 
     const std::vector<float> sh = tetprobe::bake_lighting(scene->scene, probes, settings);
     for (size_t i = 0; i < count; ++i)
-        std::memcpy(reinterpret_cast<char*>(out_sh) + i * sh_stride, &sh[27 * i], 27 * sizeof(float));
+        std::memcpy(tetprobe::element_at(out_sh, i, sh_stride), &sh[27 * i], 27 * sizeof(float));
     return TP_OK;
     TP_API_END
 }
@@ -223,14 +269,15 @@ TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(scene);
     TP_REQUIRE_NOT_NULL(out_occlusion);
-    occlusion_stride = tetprobe::resolve_stride(occlusion_stride, 4, "occlusion_stride");
     tetprobe::BakeSettings settings;
     if (tp_status s = read_options(options, settings)) return s;
     std::vector<float> probes;
     if (tp_status s = read_positions(positions, position_stride, count, probes)) return s;
+    occlusion_stride =
+        tetprobe::checked_buffer(out_occlusion, "out_occlusion", count, "count", occlusion_stride, "occlusion_stride", 4);
     uint32_t lights = 0;
     const std::vector<uint8_t> occlusion = tetprobe::bake_occlusion(scene->scene, probes, settings, &lights);
-    for (size_t i = 0; i < count; ++i) std::memcpy(out_occlusion + i * occlusion_stride, &occlusion[4 * i], 4);
+    for (size_t i = 0; i < count; ++i) std::memcpy(tetprobe::element_at(out_occlusion, i, occlusion_stride), &occlusion[4 * i], 4);
     if (out_mixed_lights) *out_mixed_lights = lights;
     return TP_OK;
     TP_API_END

@@ -4,6 +4,7 @@
 #include "core/file_io.h"
 #include "core/store.h"
 #include "grown_structs.h"
+#include "struct_defaults.h"
 #include "store_handle.h"
 
 #include <cmath>
@@ -11,7 +12,6 @@
 #include <cstring>
 #include <memory>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 namespace tetprobe {
@@ -22,26 +22,35 @@ const Store& store_of(const tp_store* handle) { return *handle->store; }
 
 bool finite3(const float p[3]) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
-template <class T>
-T* strided(T* base, size_t index, size_t stride) {
-    using Byte = typename std::conditional<std::is_const<T>::value, const unsigned char, unsigned char>::type;
-    return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + index * stride);
-}
-
 // Positions are validated once, before any query of a batch runs.
 void require_finite_positions(const float* positions, size_t count, size_t stride) {
     for (size_t i = 0; i < count; ++i) {
         float p[3];
-        std::memcpy(p, strided(positions, i, stride), sizeof p);
+        std::memcpy(p, element_at(positions, i, stride), sizeof p);
         if (!finite3(p))
             throw Error(Status::invalid_argument, "positions[" + std::to_string(i) + "] is not finite");
     }
 }
 
-tp_status report_outside(Status status, size_t first) {
+const char* const kOutsideMessage = "position is outside the probes' hull (store built without extrapolation)";
+const char* const kGaveUpMessage =
+    "the query gave up after examining its cap of cells: the store's tessellation is inconsistent (a corrupt or "
+    "forged blob; a store this library built never gets here)";
+
+// A single query's failure.
+tp_status report_query(Status status) {
     if (status == Status::ok) return TP_OK;
-    return fail(status, "positions are outside the probes' hull (store built without extrapolation); the first at index " +
-                            std::to_string(first) + " (their SH and weights are zero)");
+    return fail(status, status == Status::outside ? kOutsideMessage : kGaveUpMessage);
+}
+
+// A batch's: the first failed query, named.
+tp_status report_batch(Status status, size_t first) {
+    if (status == Status::ok) return TP_OK;
+    if (status == Status::outside)
+        return fail(status, "positions are outside the probes' hull (store built without extrapolation); the first at "
+                            "index " + std::to_string(first) + " (their SH and weights are zero)");
+    return fail(status, std::string(kGaveUpMessage) + "; the first at index " + std::to_string(first) +
+                            " (the SH and weights of failed queries are zero)");
 }
 
 tp_batch_options default_batch_options() {
@@ -64,8 +73,6 @@ BatchSettings batch_settings(const tp_batch_options* options) {
     return settings;
 }
 
-const char* const kOutsideMessage = "position is outside the probes' hull (store built without extrapolation)";
-
 // Fills a location's public form with input-probe indices.
 void to_input_probes(const Store& store, const Location& loc, uint32_t probes[4], float weights[4]) {
     for (int k = 0; k < 4; ++k) {
@@ -82,19 +89,19 @@ tp_status interpolate_batch(const tp_store* store, size_t count, const float* po
     TP_REQUIRE_NOT_NULL(store);
     const BatchSettings settings = batch_settings(options);
     if (count == 0) return TP_OK;
-    TP_REQUIRE_NOT_NULL(positions);
-    TP_REQUIRE_NOT_NULL(out_sh);
-    if (with_occlusion) TP_REQUIRE_NOT_NULL(out_occlusion);
-    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
-    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
-    sh_stride = resolve_stride(sh_stride, 27 * sizeof(float), "sh_stride");
-    if (with_occlusion) occlusion_stride = resolve_stride(occlusion_stride, 4 * sizeof(float), "occlusion_stride");
+    position_stride = checked_buffer(positions, "positions", count, "count", position_stride, "position_stride",
+                                     3 * sizeof(float));
+    if (hints) hint_stride = checked_buffer(hints, "hints", count, "count", hint_stride, "hint_stride", sizeof(int32_t));
+    sh_stride = checked_buffer(out_sh, "out_sh", count, "count", sh_stride, "sh_stride", 27 * sizeof(float));
+    if (with_occlusion)
+        occlusion_stride = checked_buffer(out_occlusion, "out_occlusion", count, "count", occlusion_stride,
+                                          "occlusion_stride", 4 * sizeof(float));
     require_finite_positions(positions, count, position_stride);
     size_t first_outside = count;
     const Status status = store_of(store).interpolate_batch(count, positions, position_stride, hints, hint_stride,
                                                             out_sh, sh_stride, settings, &first_outside,
                                                             out_occlusion, occlusion_stride);
-    return report_outside(status, first_outside);
+    return report_batch(status, first_outside);
 }
 
 }  // namespace
@@ -110,6 +117,7 @@ TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_sto
     TP_REQUIRE_NOT_NULL(out_store);
     *out_store = nullptr;
     if (!data) return fail(TP_ERROR_INVALID_ARGUMENT, "data is NULL");
+    checked_packed(data, "data", size, "size", 1);
     std::unique_ptr<tp_store> handle(new tp_store);
     handle->store = Store::load(data, size);
     *out_store = handle.release();
@@ -117,12 +125,20 @@ TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_sto
     TP_API_END
 }
 
-TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store) {
+TP_API tp_status tp_store_load_file_ex(const char* path, const tp_store_load_options* options, tp_store** out_store) {
     TP_API_BEGIN
     TP_REQUIRE_NOT_NULL(out_store);
     *out_store = nullptr;
     TP_REQUIRE_NOT_NULL(path);
-    const std::vector<uint8_t> bytes = read_file(path);
+    tp_store_load_options settings = default_store_load_options();
+    if (options) {
+        if (options->struct_size < sizeof(uint32_t))
+            return fail(TP_ERROR_INVALID_ARGUMENT, "options->struct_size is not set (use tp_store_load_options_init)");
+        // Fields beyond the caller's struct_size (an older caller's smaller struct) keep their defaults.
+        if (options->struct_size >= offsetof(tp_store_load_options, max_file_bytes) + sizeof(uint64_t))
+            settings.max_file_bytes = options->max_file_bytes;
+    }
+    const std::vector<uint8_t> bytes = read_file(path, settings.max_file_bytes);
     std::unique_ptr<tp_store> handle(new tp_store);
     try {
         handle->store = Store::load(bytes.data(), bytes.size());
@@ -132,6 +148,10 @@ TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store) {
     *out_store = handle.release();
     return TP_OK;
     TP_API_END
+}
+
+TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store) {
+    return tp_store_load_file_ex(path, nullptr, out_store);
 }
 
 TP_API tp_status tp_store_save_file(const tp_store* store, const char* path) {
@@ -219,8 +239,7 @@ TP_API tp_status tp_store_interpolate(const tp_store* store, const float positio
     TP_REQUIRE_NOT_NULL(out_sh);
     if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
     const Status status = store_of(store).interpolate(position, cell_hint, out_sh);
-    if (status != Status::ok) return fail(status, kOutsideMessage);
-    return TP_OK;
+    return report_query(status);
     TP_API_END
 }
 
@@ -233,8 +252,7 @@ TP_API tp_status tp_store_interpolate_occlusion(const tp_store* store, const flo
     TP_REQUIRE_NOT_NULL(out_occlusion);
     if (!finite3(position)) return fail(TP_ERROR_INVALID_ARGUMENT, "position is not finite");
     const Status status = store_of(store).interpolate(position, cell_hint, out_sh, out_occlusion);
-    if (status != Status::ok) return fail(status, kOutsideMessage);
-    return TP_OK;
+    return report_query(status);
     TP_API_END
 }
 
@@ -277,8 +295,7 @@ TP_API tp_status tp_store_weights(const tp_store* store, const float position[3]
     const Location loc = s.locate(position, cell_hint ? *cell_hint : -1);
     if (cell_hint) *cell_hint = loc.cell;
     to_input_probes(s, loc, out_probes, out_weights);
-    if (loc.status != Status::ok) return fail(loc.status, kOutsideMessage);
-    return TP_OK;
+    return report_query(loc.status);
     TP_API_END
 }
 
@@ -290,23 +307,25 @@ TP_API tp_status tp_store_weights_batch(const tp_store* store, size_t count, con
     TP_REQUIRE_NOT_NULL(store);
     const BatchSettings settings = batch_settings(options);
     if (count == 0) return TP_OK;
-    TP_REQUIRE_NOT_NULL(positions);
-    TP_REQUIRE_NOT_NULL(out_probes);
-    TP_REQUIRE_NOT_NULL(out_weights);
-    position_stride = resolve_stride(position_stride, 3 * sizeof(float), "position_stride");
-    hint_stride = resolve_stride(hint_stride, sizeof(int32_t), "hint_stride");
-    probes_stride = resolve_stride(probes_stride, 4 * sizeof(uint32_t), "probes_stride");
-    weights_stride = resolve_stride(weights_stride, 4 * sizeof(float), "weights_stride");
+    position_stride = checked_buffer(positions, "positions", count, "count", position_stride, "position_stride",
+                                     3 * sizeof(float));
+    if (hints) hint_stride = checked_buffer(hints, "hints", count, "count", hint_stride, "hint_stride", sizeof(int32_t));
+    probes_stride = checked_buffer(out_probes, "out_probes", count, "count", probes_stride, "probes_stride",
+                                   4 * sizeof(uint32_t));
+    weights_stride = checked_buffer(out_weights, "out_weights", count, "count", weights_stride, "weights_stride",
+                                    4 * sizeof(float));
     require_finite_positions(positions, count, position_stride);
     const Store& s = store_of(store);
     size_t first_outside = count;
     const Status status = s.weights_batch(count, positions, position_stride, hints, hint_stride, out_probes,
                                           probes_stride, out_weights, weights_stride, settings, &first_outside);
     for (size_t i = 0; i < count; ++i) {  // stored probes to the input probes the caller knows
-        uint32_t* probes = strided(out_probes, i, probes_stride);
+        uint32_t probes[4];
+        std::memcpy(probes, element_at(out_probes, i, probes_stride), sizeof probes);
         for (int k = 0; k < 4; ++k) probes[k] = s.probe_source(probes[k]);
+        std::memcpy(element_at(out_probes, i, probes_stride), probes, sizeof probes);
     }
-    return report_outside(status, first_outside);
+    return report_batch(status, first_outside);
     TP_API_END
 }
 
@@ -332,8 +351,7 @@ TP_API tp_status tp_store_locate(const tp_store* store, const float position[3],
     to_input_probes(s, loc, full.probes, full.weights);
     full.t = loc.t;
     copy_fitting_fields(location, full, location->struct_size);
-    if (loc.status != Status::ok) return fail(loc.status, kOutsideMessage);
-    return TP_OK;
+    return report_query(loc.status);
     TP_API_END
 }
 

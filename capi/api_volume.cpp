@@ -1,5 +1,6 @@
 // Shadow caster volumes and the conservative box / sphere tests against them.
 #include "boundary.h"
+#include "strides.h"
 
 #include "core/shadow_caster_volume.h"
 
@@ -13,7 +14,7 @@ namespace {
 bool finite3(const float v[3]) { return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]); }
 
 tp_status check_planes(const float* planes, size_t plane_count) {
-    if (plane_count > 0 && !planes) return fail(TP_ERROR_INVALID_ARGUMENT, "planes is NULL");
+    tetprobe::checked_packed(planes, "planes", plane_count, "plane_count", 4 * sizeof(float));
     for (size_t i = 0; i < 4 * plane_count; ++i)
         if (!std::isfinite(planes[i]))
             return fail(TP_ERROR_INVALID_ARGUMENT, "plane " + std::to_string(i / 4) + " is not finite");
@@ -25,6 +26,7 @@ tp_status check_planes(const float* planes, size_t plane_count) {
 extern "C" {
 
 TP_API size_t tp_shadow_caster_volume_bound(size_t plane_count) {
+    if (plane_count > (SIZE_MAX - 1) / 4) return SIZE_MAX;  // no such volume fits in memory: never wrap
     return tetprobe::shadow_caster_volume_bound(plane_count);
 }
 
@@ -36,7 +38,7 @@ TP_API tp_status tp_shadow_caster_volume(const float* planes, size_t plane_count
     TP_REQUIRE_NOT_NULL(light_vector);
     TP_REQUIRE_NOT_NULL(out_count);
     *out_count = 0;
-    if (capacity > 0) TP_REQUIRE_NOT_NULL(out_planes);
+    tetprobe::checked_packed(out_planes, "out_planes", capacity, "capacity", 4 * sizeof(float));
     if (tp_status s = check_planes(planes, plane_count)) return s;
     if (!finite3(light_vector)) return fail(TP_ERROR_INVALID_ARGUMENT, "light_vector is not finite");
     tetprobe::CasterLight light;

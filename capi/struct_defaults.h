@@ -1,12 +1,10 @@
-// The public structs as tp_*_init fills them in, from the values in core/option_defaults.h; the
-// initialisers of both libraries and the bake's scene defaults read them from here
+// The public structs as tp_*_init fills them in (the initialisers of both libraries), from the values
+// in core/option_defaults.h, which bake/'s own settings and scene types read too
 // (tp_sh_eval_options: capi/sh_eval_options_struct.h, next to its reading).
 #pragma once
 
 #include "capi/tetprobe.h"
 #include "core/option_defaults.h"
-
-#include <cmath>
 
 namespace tetprobe {
 
@@ -41,6 +39,22 @@ inline tp_placement_options default_placement_options() {
     return options;
 }
 
+inline tp_store_load_options default_store_load_options() {
+    tp_store_load_options options{};
+    options.struct_size = sizeof(tp_store_load_options);
+    options.max_file_bytes = kDefaultMaxStoreFileBytes;
+    return options;
+}
+
+// The file's own unit and up.
+inline tp_scene_load_options default_scene_load_options() {
+    tp_scene_load_options options{};
+    options.struct_size = sizeof(tp_scene_load_options);
+    options.up = TP_UP_FILE;
+    options.scale = 0.0f;
+    return options;
+}
+
 // Grey, one-sided, not emissive.
 inline tp_material default_material() {
     tp_material material{};
@@ -49,20 +63,19 @@ inline tp_material default_material() {
     return material;
 }
 
-// A white, baked, shadowing point light of intensity 1 and unlimited range; spot cones 30 and 45
-// degrees; pointing down.
+// A baked, shadowing point light (the rest from core/option_defaults.h).
 inline tp_light default_light() {
     tp_light light{};
     light.struct_size = sizeof(tp_light);
     light.type = TP_LIGHT_POINT;
     light.mode = TP_LIGHT_MODE_BAKED;
     light.shadows = 1;
-    light.color[0] = light.color[1] = light.color[2] = 1.0f;
-    light.intensity = 1.0f;
-    light.direction[1] = -1.0f;
-    light.range = INFINITY;
-    light.inner_angle = 30.0f;
-    light.outer_angle = 45.0f;
+    light.color[0] = light.color[1] = light.color[2] = kDefaultLightColor;
+    light.intensity = kDefaultLightIntensity;
+    for (int a = 0; a < 3; ++a) light.direction[a] = kDefaultLightDirection[a];
+    light.range = kDefaultLightRange;
+    light.inner_angle = kDefaultSpotInnerAngle;
+    light.outer_angle = kDefaultSpotOuterAngle;
     return light;
 }
 

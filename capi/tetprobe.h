@@ -11,12 +11,17 @@
  *   for the calling thread; no exception, abort or exit ever leaves the library.
  * - Handles (tp_store, tp_scene) are opaque, created and released by the library. Buffers are
  *   owned by the caller and come with explicit counts and strides in bytes (0 = tightly packed).
+ *   Neither a buffer nor its stride needs any alignment. A count or stride whose buffer would not fit
+ *   in the address space (count x stride beyond PTRDIFF_MAX) is refused with
+ *   TP_ERROR_INVALID_ARGUMENT naming the parameter, before anything is read or written.
  * - A tp_store is immutable: any number of threads may query one store at once. The cell hint of a
  *   moving object is owned by the caller (int32_t, -1 = none) and updated by each query.
  * - Structs that may grow start with a struct_size field: set it to sizeof(the struct), or call the
  *   matching *_init function, which also fills the defaults.
  * - Positions are float32 in the caller's world units. Queries never allocate and never fail on a
- *   valid store with valid arguments.
+ *   valid store with valid arguments. On a forged or corrupt blob that passes validation (which
+ *   cannot prove its tessellation Delaunay) a query stops after a bounded number of cells, about as
+ *   many as the store has, and fails with TP_ERROR_INVALID_BLOB.
  *
  * Spherical harmonics contract (shared by every function that takes or returns SH)
  * - Real, orthonormal SH, 3 bands (L2): 9 coefficients per colour channel, 27 floats per probe,
@@ -63,7 +68,8 @@ typedef enum tp_status {
     TP_ERROR_INVALID_ARGUMENT = 1, /* a null pointer, a bad count or stride, a non-finite value */
     TP_ERROR_OUT_OF_MEMORY = 2,
     TP_ERROR_IO = 3,               /* a file could not be read or written */
-    TP_ERROR_INVALID_BLOB = 4,     /* a store blob failed validation (truncated, corrupt, bad index) */
+    TP_ERROR_INVALID_BLOB = 4,     /* a store blob failed validation (truncated, corrupt, bad index), or a
+                                      query on a forged one gave up (see tp_store_interpolate) */
     TP_ERROR_VERSION = 5,          /* a blob of a format version this library does not read */
     TP_ERROR_DEGENERATE = 6,       /* input the operation cannot use (e.g. no probes) */
     TP_ERROR_TETGEN = 7,           /* TetGen reported a failure */
@@ -135,13 +141,40 @@ TP_API tp_status tp_store_build(const float* positions, size_t position_stride, 
 
 /** Loads a store from a blob (copied; data may be freed afterwards). Validates everything once:
     size, magic, version, section bounds and alignment, every index against its count, finite
-    floats, checksum, no trailing bytes. Safe for untrusted input. */
+    floats, checksum, no trailing bytes; and refuses what the builder never writes: an origin beyond
+    1e30 or positions beyond 2e30 from it, bounds other than the probes' bounding box, normals with a
+    component outside [-1, 1], a line or flat set whose cells have no length (area) along the axis
+    the blob names. Safe for untrusted input: nothing outside the blob is read, and a query on any
+    store that loads examines a bounded number of cells (see tp_store_interpolate). */
 TP_API tp_status tp_store_load(const void* data, size_t size, tp_store** out_store);
 
-/** Loads and validates a store file. */
+/** Options of tp_store_load_file_ex. */
+typedef struct tp_store_load_options {
+    uint32_t struct_size;
+    /** Files larger than this are refused with TP_ERROR_IO (default 1 GiB, far beyond any real store:
+        a store takes about 200 bytes per probe). */
+    uint64_t max_file_bytes;
+} tp_store_load_options;
+
+/** Fills defaults and struct_size. */
+TP_API tp_status tp_store_load_options_init(tp_store_load_options* options);
+
+/** Loads and validates a store file: tp_store_load_file_ex with the default options. */
 TP_API tp_status tp_store_load_file(const char* path, tp_store** out_store);
 
-/** Writes the store's blob to path atomically (temporary file, then rename). */
+/** Loads and validates a store file. Only a regular file (symbolic links followed) of at most
+    options->max_file_bytes is read; a directory, device (such as /dev/zero), FIFO or socket, or a larger
+    file, is refused with TP_ERROR_IO and a message that says which. options may be NULL for defaults. */
+TP_API tp_status tp_store_load_file_ex(const char* path, const tp_store_load_options* options, tp_store** out_store);
+
+/** Writes the store's blob to path atomically: a temporary file next to the file is written, flushed
+    and renamed over it, so path holds either its old contents or the whole new store. A symbolic link
+    is written through (its target gets the new contents; the link stays). An existing file keeps its
+    permissions (POSIX mode; on Windows its attributes and access control), a new one gets the process's
+    default; a path naming a directory, device or FIFO is refused. The temporary file,
+    "<file name>.tetprobe-tmp-<process id>-<16 hex digits>", is removed on every failure; a save that
+    was killed leaves it behind, and the next save of the same file removes it (only files of that
+    pattern, whose process is gone and which no save holds). */
 TP_API tp_status tp_store_save_file(const tp_store* store, const char* path);
 
 /** Read-only view of the store's blob, valid while the store lives. */
@@ -184,7 +217,9 @@ TP_API tp_status tp_store_probe_sh(const tp_store* store, uint32_t probe, float 
     include a pair that cannot see each other scales each probe's weight by its visibility from the
     query (a smoothstep over the wall's crossing of the edge, along the query's barycentric projection
     onto it) and renormalises: continuous everywhere, exact at probes, and cells without such a pair
-    answer bit for bit as without leak control. */
+    answer bit for bit as without leak control. Fails with TP_ERROR_OUTSIDE (a store built without
+    extrapolation, outside the hull) or TP_ERROR_INVALID_BLOB (a query that gave up at its cap of cells:
+    only a forged or corrupt store's cells make one), with zero SH. */
 TP_API tp_status tp_store_interpolate(const tp_store* store, const float position[3], int32_t* cell_hint,
                                       float out_sh[27]);
 
@@ -207,9 +242,9 @@ typedef struct tp_batch_options {
 TP_API tp_status tp_batch_options_init(tp_batch_options* options);
 
 /** Batch of count queries. positions at position_stride bytes (0 = 12); hints at hint_stride (0 = 4),
-    or NULL; out_sh at sh_stride (0 = 108); options may be NULL for defaults. Returns TP_OK, or
-    TP_ERROR_OUTSIDE (store without extrapolation) with the first such query named in the message
-    and zero SH for every query outside. */
+    or NULL; out_sh at sh_stride (0 = 108); options may be NULL for defaults. Returns TP_OK, or the
+    status of the first query that failed (TP_ERROR_OUTSIDE or TP_ERROR_INVALID_BLOB, as
+    tp_store_interpolate), named in the message, with zero SH for every query that failed. */
 TP_API tp_status tp_store_interpolate_batch(const tp_store* store, size_t count, const float* positions,
                                             size_t position_stride, int32_t* hints, size_t hint_stride,
                                             float* out_sh, size_t sh_stride, const tp_batch_options* options);
@@ -354,7 +389,8 @@ TP_API tp_status tp_sh_nonnegative_window_strength(const float sh[27], const tp_
 #define TP_LIGHT_POINT 1u
 #define TP_LIGHT_SPOT 2u
 
-/** Upper bound of the planes a volume built from plane_count planes may have. */
+/** Upper bound of the planes a volume built from plane_count planes may have (SIZE_MAX when that bound
+    does not fit in a size_t). */
 TP_API size_t tp_shadow_caster_volume_bound(size_t plane_count);
 
 /** Builds the volume of everything that can cast a shadow from a light into the convex polyhedron
@@ -416,9 +452,53 @@ TP_API tp_status tp_light_init(tp_light* light);
 TP_API tp_status tp_scene_create(tp_scene** out_scene);
 TP_API tp_status tp_scene_release(tp_scene* scene);
 
-/** Loads a JSON scene file (meshes inline or from OBJ files relative to it, lights, sky, probes), or a
-    Quake 3 level (a .bsp file, IBSP version 46; conventions in the README). */
+/** Loads a scene file with the default options (tp_scene_load_file_ex). */
 TP_API tp_status tp_scene_load_file(const char* path, tp_scene** out_scene);
+
+/** Which way is up: tp_scene_load_options.up, tp_scene_up, tp_scene_set_up. */
+#define TP_UP_FILE 0u  /* load options only: what the file says */
+#define TP_UP_POS_X 1u
+#define TP_UP_NEG_X 2u
+#define TP_UP_POS_Y 3u
+#define TP_UP_NEG_Y 4u
+#define TP_UP_POS_Z 5u
+#define TP_UP_NEG_Z 6u
+
+typedef struct tp_scene_load_options {
+    uint32_t struct_size;
+    /** Which way is up in the file (TP_UP_*; default TP_UP_FILE: glTF and OBJ +y, FBX its UpAxis, a JSON
+        scene its "up", +y by default). Coordinates are not turned: the scene records it (tp_scene_up). */
+    uint32_t up;
+    /** World units per file unit (default 0: the file's own unit in metres, glTF and OBJ 1, FBX its
+        UnitScaleFactor / 100; a JSON scene is in world units, 0 or 1). Positions and ranges scale; point
+        and spot intensities scale by the square of world units per metre, so irradiance stays the same. */
+    float scale;
+} tp_scene_load_options;
+
+/** Fills defaults and struct_size. */
+TP_API tp_status tp_scene_load_options_init(tp_scene_load_options* options);
+
+/** Loads a scene file, told by its magic bytes, then its extension: glTF 2.0 (.gltf, .glb; meshes,
+    KHR_lights_punctual lights, emissive materials), FBX (.fbx), OBJ (.obj with its .mtl: albedo from Kd,
+    emission from Ke), all read through Assimp with node transforms applied, a Quake 3 level (.bsp, IBSP
+    version 46, read in y-up metres; conventions in the README), or a JSON scene (.json,
+    docs/scene-format.md: a sky, light modes, probes, and files of the other formats). Units (glTF's
+    candela and lux taken one to one as radiant intensity and irradiance) are in that document. options may
+    be NULL (defaults). An unreadable file gives TP_ERROR_IO; a malformed or truncated one, an unknown light
+    type, a referenced file that cannot be read or no mesh TP_ERROR_SCENE naming the file and what is wrong.
+    What a bake cannot use (cameras, textures, animations, area lights) is left out and noted
+    (tp_scene_notes). */
+TP_API tp_status tp_scene_load_file_ex(const char* path, const tp_scene_load_options* options, tp_scene** out_scene);
+
+/** What loading the scene left out or converted, one note a line ("" for none). text (may be NULL
+    to ask for the size) receives it if text_capacity bytes hold it and its terminating zero;
+    *out_size (may be NULL) receives the bytes needed, also with TP_ERROR_BUFFER_TOO_SMALL. */
+TP_API tp_status tp_scene_notes(const tp_scene* scene, char* text, size_t text_capacity, size_t* out_size);
+
+/** The scene's up (TP_UP_POS_X ... TP_UP_NEG_Z; +y unless loaded or set otherwise). Placement's walkable
+    mode stands probes along it. */
+TP_API tp_status tp_scene_up(const tp_scene* scene, uint32_t* out_up);
+TP_API tp_status tp_scene_set_up(tp_scene* scene, uint32_t up);
 
 /** Adds a triangle mesh. vertices: 3 floats each; indices: 3 per triangle. materials: material_count
     materials; triangle_materials: one index into materials per triangle, or NULL (all use the first). */
@@ -514,8 +594,8 @@ TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions
  * --------------------------------------------------------------------------------------------- */
 
 #define TP_PLACEMENT_WHOLE 0u    /* candidates fill the scene's bounds */
-#define TP_PLACEMENT_WALKABLE 1u /* candidates stand across a height band above every upward-facing surface (+y up),
-                                    in columns of the lattice */
+#define TP_PLACEMENT_WALKABLE 1u /* candidates stand across a height band above every upward-facing surface (up is
+                                    the scene's, tp_scene_up), in columns of the lattice */
 
 typedef struct tp_placement_options {
     uint32_t struct_size;

@@ -1,5 +1,6 @@
 # `cmake --install`: the public header in include/tetprobe/, the shared libraries (with SONAME), a CMake
-# package (find_package(tetprobe) -> tetprobe::tetprobe, tetprobe::runtime) and pkg-config files.
+# package (find_package(tetprobe) -> tetprobe::tetprobe, tetprobe::runtime), pkg-config files and the
+# command-line tool `tetprobe`.
 include(CMakePackageConfigHelpers)
 
 set(TP_CMAKE_PACKAGE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/tetprobe)
@@ -20,10 +21,13 @@ install(FILES ${PROJECT_BINARY_DIR}/tetprobeConfig.cmake ${PROJECT_BINARY_DIR}/t
         DESTINATION ${TP_CMAKE_PACKAGE_DIR})
 
 # pkg-config files find the prefix from their own place (${pcfiledir}), so `cmake --install --prefix`
-# into any directory gives files that work there.
+# into any directory gives files that work there. Where that library folder is not one the system's
+# loader searches, `--libs` also gives an RPATH to it, so a program built with it runs as it is (no
+# LD_LIBRARY_PATH); which it is is known only at install time (--prefix), so the files are finished then.
 set(TP_PC_DIR ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 file(RELATIVE_PATH TP_PC_TO_PREFIX /${TP_PC_DIR} /)
 string(REGEX REPLACE "/$" "" TP_PC_TO_PREFIX "${TP_PC_TO_PREFIX}")
+set(TP_PC_RPATH "@TP_PC_RPATH@")  # kept for the install step
 foreach(library ${TP_INSTALLED_LIBRARIES})
   if(library STREQUAL "tetprobe")
     set(TP_PC_DESCRIPTION "Light probes on a tetrahedral tessellation: bake and run time")
@@ -31,6 +35,22 @@ foreach(library ${TP_INSTALLED_LIBRARIES})
     set(TP_PC_DESCRIPTION "Light probes on a tetrahedral tessellation: run time only (load, query)")
   endif()
   set(TP_PC_LIBRARY ${library})
-  configure_file(${PROJECT_SOURCE_DIR}/cmake/tetprobe.pc.in ${PROJECT_BINARY_DIR}/${library}.pc @ONLY)
-  install(FILES ${PROJECT_BINARY_DIR}/${library}.pc DESTINATION ${TP_PC_DIR})
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/tetprobe.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${library}.pc.in @ONLY)
 endforeach()
+if(WIN32)
+  set(TP_PC_RPATH_FLAG "")
+else()
+  set(TP_PC_RPATH_FLAG " -Wl,-rpath,\\\${libdir}")
+endif()
+# The loader's own folders need no RPATH: the compiler's implicit link folders are those.
+set(TP_PC_SYSTEM_LIBDIRS ${CMAKE_C_IMPLICIT_LINK_DIRECTORIES} /lib /usr/lib /lib64 /usr/lib64)
+configure_file(${PROJECT_SOURCE_DIR}/cmake/install_pkgconfig.cmake.in ${PROJECT_BINARY_DIR}/install_pkgconfig.cmake @ONLY)
+install(SCRIPT ${PROJECT_BINARY_DIR}/install_pkgconfig.cmake)
+
+# The command-line tool `tetprobe` in bin/, with an RPATH to the installed libraries relative to itself, so it
+# runs from any prefix as it is.
+if(TARGET tetprobe_cli)
+  file(RELATIVE_PATH TP_BIN_TO_LIB /${CMAKE_INSTALL_BINDIR} /${CMAKE_INSTALL_LIBDIR})
+  set_target_properties(tetprobe_cli PROPERTIES INSTALL_RPATH "$ORIGIN/${TP_BIN_TO_LIB}")
+  install(TARGETS tetprobe_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+endif()

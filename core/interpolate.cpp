@@ -34,21 +34,20 @@ void blend_occlusion(const Store::Impl& s, const Location& loc, float out[4]) {
     }
 }
 
-template <class T>
-T* strided(T* base, size_t i, size_t stride) {
-    using Byte = typename std::conditional<std::is_const<T>::value, const uint8_t, uint8_t>::type;
-    return reinterpret_cast<T*>(reinterpret_cast<Byte*>(base) + i * stride);
-}
+// Element i of a caller's strided buffer, as bytes: strides need no alignment, so every element is
+// read and written with memcpy, never through a typed pointer.
+const uint8_t* strided(const void* base, size_t i, size_t stride) { return static_cast<const uint8_t*>(base) + i * stride; }
+uint8_t* strided(void* base, size_t i, size_t stride) { return static_cast<uint8_t*>(base) + i * stride; }
 
 // Queries located before any is answered: their walks are independent, so the processor overlaps
 // them, and the cells of the group after next are prefetched.
 constexpr size_t kGroup = kMaxGroup;
 
 // Runs the queries [begin, end) in groups: locate each (reading and writing the hints), then hand
-// every location to answer(i, loc). Returns the first index that was outside (or end).
+// every location to answer(i, loc). Returns the first index that failed (or end), its status in *failure.
 template <class Answer>
 size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* positions, size_t position_stride,
-                 int32_t* hints, size_t hint_stride, bool chain_hints, Answer answer) {
+                 int32_t* hints, size_t hint_stride, bool chain_hints, Answer answer, Status* failure) {
     size_t first_outside = end;
     int32_t chained = -1;
     Location located[kGroup];
@@ -84,7 +83,7 @@ size_t run_range(const Store::Impl& s, size_t begin, size_t end, const float* po
             const size_t i = group + j;
             if (hints) std::memcpy(strided(hints, i, hint_stride), &located[j].cell, sizeof located[j].cell);
             if (located[j].status != Status::ok) {
-                if (first_outside == end) first_outside = i;
+                if (first_outside == end) first_outside = i, *failure = located[j].status;
             } else if (s.leak_offsets) {
                 weigh_by_visibility(s, located[j]);
             }
@@ -103,10 +102,11 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     const size_t threads =
         std::max<size_t>(1, std::min<size_t>(settings.threads, (count + kQueriesPerThread - 1) / kQueriesPerThread));
     std::vector<size_t> outside(threads, count);
+    std::vector<Status> failure(threads, Status::ok);
     auto range = [&](size_t t) {
         const size_t begin = count * t / threads, end = count * (t + 1) / threads;
         const size_t first = run_range(s, begin, end, positions, position_stride, hints, hint_stride,
-                                       settings.chain_hints, answer);
+                                       settings.chain_hints, answer, &failure[t]);
         outside[t] = first < end ? first : count;
     };
     if (threads == 1) {
@@ -118,9 +118,9 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
         range(0);
         for (std::thread& thread : pool) thread.join();
     }
-    const size_t first = *std::min_element(outside.begin(), outside.end());
-    if (first_outside) *first_outside = first;
-    return first < count ? Status::outside : Status::ok;
+    const size_t t = size_t(std::min_element(outside.begin(), outside.end()) - outside.begin());
+    if (first_outside) *first_outside = outside[t];
+    return outside[t] < count ? failure[t] : Status::ok;
 }
 
 }  // namespace
@@ -147,15 +147,16 @@ Status Store::interpolate_batch(size_t count, const float* positions, size_t pos
     const Impl& s = *impl_;
     return run_batch(s, count, positions, position_stride, hints, hint_stride, settings, first_outside,
                      [&](size_t i, const Location& loc) {
-                         float* out = strided(out_sh, i, sh_stride);
-                         float* occlusion = out_occlusion ? strided(out_occlusion, i, occlusion_stride) : nullptr;
-                         if (loc.status != Status::ok) {
-                             std::fill(out, out + 27, 0.0f);
-                             if (occlusion) std::fill(occlusion, occlusion + kOcclusionChannels, 0.0f);
+                         float sh[27], occlusion[kOcclusionChannels];
+                         if (loc.status == Status::ok) {
+                             blend(s, loc, sh);
+                             if (out_occlusion) blend_occlusion(s, loc, occlusion);
                          } else {
-                             blend(s, loc, out);
-                             if (occlusion) blend_occlusion(s, loc, occlusion);
+                             std::fill(sh, sh + 27, 0.0f);
+                             std::fill(occlusion, occlusion + kOcclusionChannels, 0.0f);
                          }
+                         std::memcpy(strided(out_sh, i, sh_stride), sh, sizeof sh);
+                         if (out_occlusion) std::memcpy(strided(out_occlusion, i, occlusion_stride), occlusion, sizeof occlusion);
                      });
 }
 
@@ -164,12 +165,12 @@ Status Store::weights_batch(size_t count, const float* positions, size_t positio
                             size_t weights_stride, const BatchSettings& settings, size_t* first_outside) const {
     return run_batch(*impl_, count, positions, position_stride, hints, hint_stride, settings, first_outside,
                      [&](size_t i, const Location& loc) {
-                         uint32_t* probes = strided(out_probes, i, probes_stride);
-                         float* weights = strided(out_weights, i, weights_stride);
-                         for (int k = 0; k < 4; ++k) {
-                             probes[k] = loc.status == Status::ok ? loc.probes[k] : 0;
-                             weights[k] = loc.status == Status::ok ? loc.weights[k] : 0.0f;
-                         }
+                         uint32_t probes[4] = {0, 0, 0, 0};
+                         float weights[4] = {0, 0, 0, 0};
+                         if (loc.status == Status::ok)
+                             for (int k = 0; k < 4; ++k) probes[k] = loc.probes[k], weights[k] = loc.weights[k];
+                         std::memcpy(strided(out_probes, i, probes_stride), probes, sizeof probes);
+                         std::memcpy(strided(out_weights, i, weights_stride), weights, sizeof weights);
                      });
 }
 

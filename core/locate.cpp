@@ -16,7 +16,9 @@
 #include "core/polynomial_roots.h"
 #include "core/tetrahedron_orientations.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace tetprobe {
@@ -467,13 +469,40 @@ void settle_outer_cell(const Cells<Index>& cells, uint32_t cell, const OuterView
         set_outer_weights(cells, best.cell, best.view, loc);
 }
 
+// Nothing holds the point (only a store whose outer cells leave gaps): the first outer cell.
 template <class Index>
-Location search(const Store::Impl& s, const float q[3], bool outer_only) {
+void answer_first_outer_cell(const Cells<Index>& cells, Location& loc) {
+    OuterView o;
+    o.weights[0] = 1;
+    set_outer_weights(cells, cells.s.inner_cell_count, o, loc);
+}
+
+// The exhaustive search examines at most *budget cells (each view of a cell counts, so a pass over
+// the outer cells costs one per outer cell) and subtracts what it used; with the budget spent it
+// gives up: status invalid_blob, cell -1 (only a corrupt or forged store's query gets there: see
+// search_budget). Unlimited: a budget of UINT64_MAX.
+template <class Index>
+Location search(const Store::Impl& s, const float q[3], bool outer_only, uint64_t* budget) {
     const Cells<Index> cells(s);
     Location loc;
     loc.fallback = true;
+    const uint64_t available = *budget;
+    auto spend = [&] {
+        if (*budget == 0) return false;
+        --*budget;
+        ++loc.searched;
+        return true;
+    };
+    auto give_up = [&] {
+        Location capped;
+        capped.fallback = true;
+        capped.status = Status::invalid_blob;
+        capped.searched = uint32_t(std::min<uint64_t>(available, UINT32_MAX));
+        return capped;
+    };
     if (!outer_only) {
         for (uint32_t cell = 0; cell < s.inner_cell_count; ++cell) {
+            if (!spend()) return give_up();
             const InnerView v = view_inner_cell(cells, cell, q);
             if (v.verdict == InnerView::holds) {
                 set_inner_weights(cells, cell, v, loc);
@@ -493,6 +522,7 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
         double first_t = std::numeric_limits<double>::infinity();
         for (int pass = 0; pass < 2 && best.cell == 0xFFFFFFFFu; ++pass) {
             for (uint32_t cell = s.inner_cell_count; cell < s.cell_count; ++cell) {
+                if (!spend()) return give_up();
                 const OuterView o = view_outer_cell(cells, cell, q, -1.0);
                 if (!o.beyond || !o.holds) continue;
                 const double score = minimum(o.weights, s.dimension);
@@ -512,6 +542,7 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
     } else {
         double best_score = -std::numeric_limits<double>::infinity();
         for (uint32_t cell = s.inner_cell_count; cell < s.cell_count; ++cell) {
+            if (!spend()) return give_up();
             const OuterView o = view_outer_cell(cells, cell, q, -1.0);
             if (!o.beyond || !o.holds) continue;
             const double score = minimum(o.weights, s.dimension);
@@ -521,12 +552,7 @@ Location search(const Store::Impl& s, const float q[3], bool outer_only) {
             }
         }
     }
-    if (loc.cell < 0 && !outer_only) {
-        // Nothing holds the point (only a store whose outer cells leave gaps): the first outer cell.
-        OuterView o;
-        o.weights[0] = 1;
-        set_outer_weights(cells, s.inner_cell_count, o, loc);
-    }
+    if (loc.cell < 0 && !outer_only) answer_first_outer_cell(cells, loc);
     return loc;
 }
 
@@ -562,11 +588,22 @@ bool walk_clear(const Cells<Index>& cells, uint32_t* cell, const float q[3], uin
     return walk_clear_portable(cells, cell, q, steps, step_cap, loc);
 }
 
+// What one query may examine, whatever the blob. The loader cannot prove a tessellation Delaunay, so
+// a forged one may send walks round in circles and every query into the exhaustive search. A walk on
+// a valid store never visits a cell twice, so it stops after cell_count + 64 steps (a long walk, from
+// a far hint or along a line, is legitimate: the cap never cuts one short). The search may then view
+// every outer cell three times (its passes: what a valid store's fallback beyond the hull needs, so
+// no valid query reaches the cap) plus kSearchCells more (inside the hull a valid store never
+// searches); past that the query gives up with status invalid_blob. So a query on any blob costs at
+// most about as many cell views as the store has cells, like the costliest valid query.
+constexpr uint64_t kSearchCells = 4096;
+
+uint64_t search_budget(const Store::Impl& s) { return 3 * uint64_t(s.cell_count - s.inner_cell_count) + kSearchCells; }
+
 template <class Index>
 Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
     const Cells<Index> cells(s);
     uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(q);
-    // A walk on a valid tessellation never visits a cell twice; only a corrupt blob reaches the cap.
     const uint32_t step_cap = s.cell_count + 64;
     uint32_t steps = 0;
     Location loc;
@@ -643,8 +680,10 @@ Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
     }
     // Lost among outer cells whose sweeps disagree far out (or a corrupt tessellation): decide over
     // the outer cells alone when the query is beyond the hull, else over every cell.
-    loc = search<Index>(s, q, beyond_hull);
-    if (loc.cell < 0) loc = search<Index>(s, q, false);
+    uint64_t budget = search_budget(s);
+    loc = search<Index>(s, q, beyond_hull, &budget);
+    // Beyond the hull no inner cell holds the point either: searching all cells would end the same.
+    if (loc.cell < 0 && loc.status == Status::ok) answer_first_outer_cell(cells, loc);
     loc.steps = steps;
     return loc;
 }
@@ -699,7 +738,9 @@ void prefetch_cell(const Store::Impl& store, int32_t cell) {
 }
 
 Location locate_exhaustive(const Store::Impl& store, const float local[3], bool outer_only) {
-    return store.index32 ? search<uint32_t>(store, local, outer_only) : search<uint16_t>(store, local, outer_only);
+    uint64_t unlimited = UINT64_MAX;
+    return store.index32 ? search<uint32_t>(store, local, outer_only, &unlimited)
+                         : search<uint16_t>(store, local, outer_only, &unlimited);
 }
 
 }  // namespace tetprobe

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 namespace tetprobe {
 
@@ -18,5 +19,16 @@ constexpr float kDefaultWalkMinHeight = 0.0f, kDefaultWalkMaxHeight = 2.0f;
 constexpr float kDefaultPlacementErrorBound = 0.25f;
 constexpr float kDefaultPlacementLightClearance = 1.0f;  // world units
 constexpr uint32_t kDefaultPlacementRays = 128;
+// Lights (tp_light, bake/scene.h's LightDescription): a white, baked, shadowing point light of
+// intensity 1 and unlimited range, pointing down, with spot cones of 30 and 45 degrees.
+constexpr float kDefaultLightColor = 1.0f;  // each channel
+constexpr float kDefaultLightIntensity = 1.0f;
+constexpr float kDefaultLightDirection[3] = {0.0f, -1.0f, 0.0f};
+constexpr float kDefaultLightRange = std::numeric_limits<float>::infinity();
+constexpr float kDefaultSpotInnerAngle = 30.0f, kDefaultSpotOuterAngle = 45.0f;  // full cone angles, degrees
+
+// Loading a store file (tp_store_load_options): larger files are refused. A store takes about 200
+// bytes per probe, cells included, so 1 GiB holds millions of probes, far beyond any level.
+constexpr uint64_t kDefaultMaxStoreFileBytes = uint64_t(1) << 30;
 
 }  // namespace tetprobe

@@ -12,12 +12,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <new>
 
 namespace tetprobe {
 
 AlignedBytes aligned_bytes(size_t size) {
+    // No object is larger than PTRDIFF_MAX; refusing those also keeps the rounding up from wrapping.
+    if (size > size_t(PTRDIFF_MAX)) throw std::bad_alloc();
     // At least one line, so an empty blob still gets a valid pointer; zero past size (the caller fills the rest).
     const size_t capacity = (std::max(size, size_t(64)) + 63) & ~size_t(63);
     AlignedBytes bytes(static_cast<uint8_t*>(::operator new(capacity, std::align_val_t(64))));

@@ -16,11 +16,14 @@ enum class CellKind : uint32_t { inner = 0, outer = 1 };
 
 // Everything one query used (the C ABI's tp_location, in stored-probe terms).
 struct Location {
-    Status status = Status::ok;   // ok, or outside (a store built without extrapolation)
+    // ok; outside (a store built without extrapolation); invalid_blob: the query gave up at its cap
+    // of examined cells (locate.cpp), which only a corrupt or forged store's tessellation reaches.
+    Status status = Status::ok;
     int32_t cell = -1;
     CellKind kind = CellKind::inner;
     uint32_t steps = 0;
     bool fallback = false;        // the walk handed the decision to the exhaustive search
+    uint32_t searched = 0;        // cells the exhaustive search examined
     uint32_t probes[4] = {0, 0, 0, 0};  // stored probe indices; unused slots repeat slot 0 with weight 0
     float weights[4] = {0, 0, 0, 0};
     float t = 0;
@@ -67,8 +70,10 @@ public:
     Status interpolate(const float world_position[3], int32_t* hint, float out_sh[27],
                        float out_occlusion[4] = nullptr) const;
 
-    // count queries at byte strides (already resolved, > 0); hints may be null. Returns ok, or
-    // outside with *first_outside the index of the first query outside (its SH and weights zero).
+    // count queries at byte strides (already resolved, > 0; no alignment needed: every element is
+    // copied with memcpy); hints may be null. Returns ok, or the status of the first query that
+    // failed (outside, or invalid_blob, see Location) with *first_outside its index (the SH and
+    // weights of every failed query zero).
     // out_occlusion (may be null): 4 floats per query at occlusion_stride bytes, as interpolate's.
     Status interpolate_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
                              size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,

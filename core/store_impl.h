@@ -14,7 +14,8 @@ struct AlignedFree {
     void operator()(uint8_t* p) const { ::operator delete(p, std::align_val_t(64)); }
 };
 using AlignedBytes = std::unique_ptr<uint8_t, AlignedFree>;
-// size bytes (at least 64) aligned to a cache line, zero-filled past size.
+// size bytes (at least 64) aligned to a cache line, zero-filled past size; std::bad_alloc when size
+// cannot be rounded up to a whole line (or allocated).
 AlignedBytes aligned_bytes(size_t size);
 
 // One cell as the walk reads it: what a step needs, side by side (16 bytes at 16-bit indices).

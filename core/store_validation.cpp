@@ -2,6 +2,7 @@
 // queries can trust the data.
 #include "core/store_validation.h"
 
+#include "core/coordinate_limits.h"
 #include "core/error.h"
 #include "core/orientation.h"
 #include "core/plane_projection.h"
@@ -9,6 +10,7 @@
 #include "core/store_layout.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -30,9 +32,37 @@ uint32_t widen_index(Index value) {
     return uint32_t(value);
 }
 
+std::string describe(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", value);
+    return text;
+}
+
 void check_finite_floats(const float* values, uint64_t count, const char* section) {
     for (uint64_t i = 0; i < count; ++i)
         if (!std::isfinite(values[i])) reject(at(section, i) + " is not finite");
+}
+
+// The header's bounds are the positions' bounding box, exactly (as the builder computes them), so
+// every position is within the local coordinate limit the header check applied to the bounds.
+void check_bounds(const float* positions, const StoreHeader& h) {
+    for (uint32_t k = 0; k < 3; ++k) {
+        float lo = positions[k], hi = positions[k];
+        for (uint64_t p = 1; p < h.probe_count; ++p) {
+            const float x = positions[3 * p + k];
+            lo = x < lo ? x : lo;
+            hi = x > hi ? x : hi;
+        }
+        if (lo != h.bounds_min[k] || hi != h.bounds_max[k])
+            reject("bounds along axis " + std::to_string(k) + " are [" + describe(h.bounds_min[k]) + ", " +
+                   describe(h.bounds_max[k]) + "], the positions span [" + describe(lo) + ", " + describe(hi) + "]");
+    }
+}
+
+// Normals are unit vectors (hull probes) or zero: every component within [-1, 1].
+void check_normals(const float* normals, uint64_t count) {
+    for (uint64_t i = 0; i < count; ++i)
+        if (!(std::fabs(normals[i]) <= 1.0f)) reject(at("normals", i) + " is " + describe(normals[i]) + ", outside [-1, 1]");
 }
 
 void check_header(const StoreHeader& h, size_t size) {
@@ -66,8 +96,13 @@ void check_header(const StoreHeader& h, size_t size) {
         reject("probe_count or cell_count does not fit the index width");
     for (int k = 0; k < 3; ++k) {
         if (h.grid[k] < 1) reject("grid has 0 cells along an axis");
-        if (!std::isfinite(h.origin[k])) reject("origin is not finite");
-        if (!std::isfinite(h.bounds_min[k]) || !std::isfinite(h.bounds_max[k])) reject("bounds are not finite");
+        // What the builder writes: an origin within its coordinate limit, local bounds within the local one.
+        if (!(std::fabs(h.origin[k]) <= kMaxCoordinate))
+            reject("origin[" + std::to_string(k) + "] is " + describe(h.origin[k]) + ", beyond the builder's limit of 1e30");
+        for (const float bound : {h.bounds_min[k], h.bounds_max[k]})
+            if (!(std::fabs(double(bound)) <= kMaxLocalCoordinate))
+                reject("bounds along axis " + std::to_string(k) + " reach " + describe(bound) +
+                       ", beyond the builder's limit of 2e30 from the origin");
         if (!(h.bounds_min[k] <= h.bounds_max[k])) reject("bounds_min exceeds bounds_max");
     }
 }
@@ -127,8 +162,10 @@ void check_cell_indices(const uint8_t* data, const StoreHeader& h, const Section
 
 void check_probes(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
     const uint64_t probes = h.probe_count;
-    check_finite_floats(reinterpret_cast<const float*>(data + table[kSectionPositions].offset), probes * 3, "positions");
-    check_finite_floats(reinterpret_cast<const float*>(data + table[kSectionNormals].offset), probes * 3, "normals");
+    const float* positions = reinterpret_cast<const float*>(data + table[kSectionPositions].offset);
+    check_finite_floats(positions, probes * 3, "positions");
+    check_bounds(positions, h);
+    check_normals(reinterpret_cast<const float*>(data + table[kSectionNormals].offset), probes * 3);
     const uint64_t halves = (h.flags & kFlagCompact) ? kShHalvesCompact : kShHalvesFast;
     const uint16_t* sh = reinterpret_cast<const uint16_t*>(data + table[kSectionSh].offset);
     for (uint64_t p = 0; p < probes; ++p) {
@@ -231,6 +268,11 @@ void check_records(const Store::Impl& s) {
             sign = p[1][s.axis] > p[0][s.axis] ? 1 : (p[1][s.axis] == p[0][s.axis] ? 0 : -1);
         }
         if (sign < 0) reject("inner cell " + std::to_string(c) + " is negatively oriented");
+        // A line's or a flat set's cells have length (area) in the coordinates the axis field names;
+        // zero there means the axis does not match the positions (a tetrahedron may be flat: TetGen's).
+        if (sign == 0 && d < 3)
+            reject("inner cell " + std::to_string(c) + " has zero " + (d == 1 ? "length along" : "area across") +
+                   " axis " + std::to_string(s.axis) + " (the axis does not match the positions)");
     }
 }
 

@@ -1,4 +1,5 @@
-// Layer 3: the lighting bake. BakeOptions, the EffectsPlan of what a bake will simulate, and Baker.
+// Layer 3: the lighting bake. BakeOptions, the EffectsPlan of what a bake will simulate, and Baker (SH and
+// occlusion probes).
 using System;
 using System.Threading;
 #if UNITY_5_3_OR_NEWER
@@ -101,6 +102,19 @@ namespace TetProbe
         {
             Check(scene, positions);
             return NativeProxy.Bake(scene.Live(), positions, (options ?? new BakeOptions()).ToNative(), progress, cancel);
+        }
+
+        /// <summary>Occlusion probes: per position, the visibility of each of the scene's mixed lights (LightMode.Mixed, in
+        /// the order added; one shadow ray each, so 0 or 255) and 255 for channels without a light. Give the result to
+        /// BuildOptions.Occlusion. progress and cancel as Bake.</summary>
+        public static OcclusionProbes BakeOcclusion(Scene scene, Vector3[] positions, IProgress<float> progress = null,
+                                                    CancellationToken cancel = default(CancellationToken))
+        {
+            Check(scene, positions);
+            int mixedLights;
+            ProbeOcclusion[] probes = NativeProxy.BakeOcclusion(scene.Live(), positions, NativeProxy.DefaultBakeOptions(), progress,
+                                                                cancel, out mixedLights);
+            return new OcclusionProbes(probes, mixedLights);
         }
 
         static void Check(Scene scene, Vector3[] positions)

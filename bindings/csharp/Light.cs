@@ -22,6 +22,9 @@ namespace TetProbe
         Baked = 0,
         /// <summary>The engine draws the direct light; only its bounced light is baked.</summary>
         Realtime = 1,
+        /// <summary>Unity's Shadowmask: baked as Realtime (bounced light only), plus each probe's visibility of the light
+        /// (Baker.BakeOcclusion, occlusion probes). At most four per scene.</summary>
+        Mixed = 2,
     }
 
     /// <summary>A light of a bake scene. Directional intensity is the irradiance on a surface facing the light; point

@@ -9,6 +9,7 @@ using System;
 using System.Runtime.InteropServices;
 #if UNITY_5_3_OR_NEWER
 using Vector3 = UnityEngine.Vector3;
+using Vector4 = UnityEngine.Vector4;
 #endif
 
 namespace TetProbe
@@ -53,6 +54,14 @@ namespace TetProbe
         public uint leak_edges;        // probe pairs kept for leak control
     }
 
+    /// <summary>tp_store_load_options: the largest file tp_store_load_file_ex reads.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct TpStoreLoadOptions
+    {
+        public uint struct_size;
+        public ulong max_file_bytes;
+    }
+
     /// <summary>tp_batch_options: flags (TP_BATCH_*) and the threads a batch query may use (0 or 1 = the caller's).</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpBatchOptions
@@ -73,6 +82,15 @@ namespace TetProbe
         public uint probe0, probe1, probe2, probe3;
         public float weight0, weight1, weight2, weight3;
         public float t;
+    }
+
+    /// <summary>tp_scene_load_options.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativeSceneLoadOptions
+    {
+        public uint struct_size;
+        public uint up;
+        public float scale;
     }
 
     /// <summary>tp_bake_options.</summary>
@@ -108,6 +126,27 @@ namespace TetProbe
         public uint inside_probes;
     }
 
+    /// <summary>tp_placement_options.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    internal struct NativePlacementOptions
+    {
+        public uint struct_size;
+        public uint mode;
+        public float spacing;
+        public float margin;
+        public float walk_min_height;
+        public float walk_max_height;
+        public uint target_count;
+        public float error_bound;
+        public uint rays;
+        public uint bounces;
+        public ulong seed;
+        public uint threads;
+        public IntPtr progress;
+        public IntPtr progress_user;
+        public float light_clearance;
+    }
+
     internal static class NativeMethods
     {
         // The plugin's name: the full library by default; the run-time library (stores and queries only) in a
@@ -131,6 +170,12 @@ namespace TetProbe
         public const uint LightSpot = 2;
         public const uint LightModeBaked = 0;
         public const uint LightModeRealtime = 1;
+        public const uint LightModeMixed = 2;
+        public const uint CellInner = 0;
+        public const uint PlacementWhole = 0;
+        public const uint PlacementWalkable = 1;
+        public const uint InsideDrop = 0;
+        public const uint InsidePush = 1;
         public const uint BakeNoCulling = 1;
         public const uint ShOrderL2 = 0;
         public const uint ShOrderL1 = 1;
@@ -160,7 +205,14 @@ namespace TetProbe
         public static extern int tp_store_load([In] byte[] data, UIntPtr size, out StoreHandle store);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_load_options_init(ref TpStoreLoadOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_load_file([In] byte[] path, out StoreHandle store);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_load_file_ex([In] byte[] path, ref TpStoreLoadOptions options,
+            out StoreHandle store);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_save_file(StoreHandle store, [In] byte[] path);
@@ -212,6 +264,16 @@ namespace TetProbe
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_store_locate(StoreHandle store, ref Vector3 position, ref int cell_hint,
             ref NativeLocation location);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion(StoreHandle store, ref Vector3 position, ref int cell_hint,
+            out SphericalHarmonicsL2 sh, out Vector4 occlusion);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion_batch(StoreHandle store, UIntPtr count,
+            [In] Vector3[] positions, UIntPtr position_stride, [In, Out] int[] hints, UIntPtr hint_stride,
+            [Out] SphericalHarmonicsL2[] sh, UIntPtr sh_stride, [Out] Vector4[] occlusion, UIntPtr occlusion_stride,
+            ref TpBatchOptions options);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_sh_eval_radiance(ref SphericalHarmonicsL2 sh, ref Vector3 direction, out Vector3 rgb);
@@ -279,6 +341,16 @@ namespace TetProbe
         public static extern int tp_store_weights_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
             UIntPtr position_stride, IntPtr hints, UIntPtr hint_stride, ref uint probes, UIntPtr probes_stride,
             ref float weights, UIntPtr weights_stride, ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, ref int hints, UIntPtr hint_stride, ref SphericalHarmonicsL2 sh, UIntPtr sh_stride,
+            ref Vector4 occlusion, UIntPtr occlusion_stride, ref TpBatchOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_store_interpolate_occlusion_batch(StoreHandle store, UIntPtr count, ref Vector3 positions,
+            UIntPtr position_stride, IntPtr hints, UIntPtr hint_stride, ref SphericalHarmonicsL2 sh, UIntPtr sh_stride,
+            ref Vector4 occlusion, UIntPtr occlusion_stride, ref TpBatchOptions options);
 #endif
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
@@ -295,6 +367,21 @@ namespace TetProbe
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_scene_load_file([In] byte[] path, out SceneHandle scene);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_load_options_init(ref NativeSceneLoadOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_load_file_ex([In] byte[] path, ref NativeSceneLoadOptions options, out SceneHandle scene);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_notes(SceneHandle scene, [Out] byte[] text, UIntPtr text_capacity, out UIntPtr size);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_up(SceneHandle scene, out uint up);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_set_up(SceneHandle scene, uint up);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_scene_add_mesh(SceneHandle scene, [In] Vector3[] vertices, UIntPtr vertex_count,
@@ -317,6 +404,9 @@ namespace TetProbe
         public static extern int tp_scene_set_probes(SceneHandle scene, [In] Vector3[] positions, UIntPtr count);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_set_playable_seeds(SceneHandle scene, [In] Vector3[] positions, UIntPtr count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_bake_options_init(ref NativeBakeOptions options);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
@@ -327,5 +417,29 @@ namespace TetProbe
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_bake(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
             UIntPtr count, ref NativeBakeOptions options, [Out] SphericalHarmonicsL2[] sh, UIntPtr sh_stride);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_bake_occlusion(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, ref NativeBakeOptions options, [Out] ProbeOcclusion[] occlusion, UIntPtr occlusion_stride,
+            out uint mixed_lights);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_placement_options_init(ref NativePlacementOptions options);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_place_probes_bound(SceneHandle scene, ref NativePlacementOptions options, out UIntPtr bound);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_place_probes(SceneHandle scene, ref NativePlacementOptions options,
+            [Out] Vector3[] positions, UIntPtr capacity, out UIntPtr count, [Out] float[] error_curve, UIntPtr curve_capacity,
+            out UIntPtr curve_points);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_find_inside_probes(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, [Out] uint[] indices, UIntPtr capacity, out UIntPtr found);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_fix_inside_probes(SceneHandle scene, [In] Vector3[] positions, UIntPtr position_stride,
+            UIntPtr count, uint mode, float margin, [Out] Vector3[] fixed_positions, UIntPtr capacity, out UIntPtr fixed_count);
     }
 }

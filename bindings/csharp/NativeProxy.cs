@@ -6,6 +6,7 @@ using System.Text;
 using System.Threading;
 #if UNITY_5_3_OR_NEWER
 using Vector3 = UnityEngine.Vector3;
+using Vector4 = UnityEngine.Vector4;
 #endif
 
 namespace TetProbe
@@ -94,19 +95,44 @@ namespace TetProbe
             return options;
         }
 
+        /// <summary>tp_store_build. scene (leak control) and occlusion (occlusion probes of occlusionLights mixed lights)
+        /// may be null; the scene stays referenced and the occlusion bytes pinned for the call.</summary>
         public static StoreHandle Build(Vector3[] positions, SphericalHarmonicsL2[] sh, NativeBuildOptions options,
+                                        SceneHandle scene, ProbeOcclusion[] occlusion, int occlusionLights,
                                         IProgress<float> progress, CancellationToken cancel)
         {
             EnsureVersion();
-            using (var bridge = ProgressBridge.Start(progress, cancel))
+            bool sceneReferenced = false;
+            GCHandle pinned = default(GCHandle);
+            try
             {
-                options.progress = bridge.Callback;
-                options.progress_user = bridge.User;
-                StoreHandle store;
-                int status = NativeMethods.tp_store_build(positions, PositionStride, sh, ShStride, (UIntPtr)positions.Length,
-                    ref options, out store);
-                bridge.Finish(status);
-                return store;
+                if (scene != null)
+                {
+                    scene.DangerousAddRef(ref sceneReferenced);
+                    options.scene = scene.DangerousGetHandle();
+                }
+                if (occlusion != null)
+                {
+                    pinned = GCHandle.Alloc(occlusion, GCHandleType.Pinned);
+                    options.occlusion = pinned.AddrOfPinnedObject();
+                    options.occlusion_stride = (UIntPtr)4;
+                    options.occlusion_lights = (uint)occlusionLights;
+                }
+                using (var bridge = ProgressBridge.Start(progress, cancel))
+                {
+                    options.progress = bridge.Callback;
+                    options.progress_user = bridge.User;
+                    StoreHandle store;
+                    int status = NativeMethods.tp_store_build(positions, PositionStride, sh, ShStride,
+                        (UIntPtr)positions.Length, ref options, out store);
+                    bridge.Finish(status);
+                    return store;
+                }
+            }
+            finally
+            {
+                if (pinned.IsAllocated) pinned.Free();
+                if (sceneReferenced) scene.DangerousRelease();
             }
         }
 
@@ -123,6 +149,17 @@ namespace TetProbe
             EnsureVersion();
             StoreHandle store;
             Check(NativeMethods.tp_store_load_file(Utf8Path(path), out store));
+            return store;
+        }
+
+        public static StoreHandle LoadFile(string path, ulong maxFileBytes)
+        {
+            EnsureVersion();
+            var options = new TpStoreLoadOptions();
+            Check(NativeMethods.tp_store_load_options_init(ref options));
+            options.max_file_bytes = maxFileBytes;
+            StoreHandle store;
+            Check(NativeMethods.tp_store_load_file_ex(Utf8Path(path), ref options, out store));
             return store;
         }
 
@@ -202,6 +239,19 @@ namespace TetProbe
         {
             Check(NativeMethods.tp_store_interpolate_batch(store, (UIntPtr)positions.Length, positions, PositionStride,
                 hints, HintStride, results, ShStride, ref options));
+        }
+
+        public static void InterpolateOcclusion(StoreHandle store, Vector3 position, ref int hint, out SphericalHarmonicsL2 sh,
+                                                out Vector4 occlusion)
+        {
+            Check(NativeMethods.tp_store_interpolate_occlusion(store, ref position, ref hint, out sh, out occlusion));
+        }
+
+        public static void InterpolateOcclusionBatch(StoreHandle store, Vector3[] positions, int[] hints,
+            SphericalHarmonicsL2[] sh, Vector4[] occlusion, TpBatchOptions options)
+        {
+            Check(NativeMethods.tp_store_interpolate_occlusion_batch(store, (UIntPtr)positions.Length, positions, PositionStride,
+                hints, HintStride, sh, ShStride, occlusion, FourStride, ref options));
         }
 
         public static void Weights(StoreHandle store, Vector3 position, ref int hint, uint[] probes, float[] weights)

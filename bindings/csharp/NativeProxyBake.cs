@@ -27,6 +27,45 @@ namespace TetProbe
             return scene;
         }
 
+        public static SceneHandle LoadScene(string path, NativeSceneLoadOptions options)
+        {
+            EnsureVersion();
+            SceneHandle scene;
+            Check(NativeMethods.tp_scene_load_file_ex(Utf8Path(path), ref options, out scene));
+            return scene;
+        }
+
+        public static NativeSceneLoadOptions DefaultSceneLoadOptions()
+        {
+            EnsureVersion();
+            var options = new NativeSceneLoadOptions();
+            Check(NativeMethods.tp_scene_load_options_init(ref options));
+            return options;
+        }
+
+        /// <summary>tp_scene_notes: the size first, then the text, split into lines.</summary>
+        public static string[] Notes(SceneHandle scene)
+        {
+            UIntPtr size;
+            Check(NativeMethods.tp_scene_notes(scene, null, UIntPtr.Zero, out size));
+            var buffer = new byte[(int)size];
+            Check(NativeMethods.tp_scene_notes(scene, buffer, size, out size));
+            string text = Encoding.UTF8.GetString(buffer, 0, Math.Max(0, (int)size - 1));
+            return text.Split(new[] { '\n' }, StringSplitOptions.RemoveEmptyEntries);
+        }
+
+        public static UpAxis Up(SceneHandle scene)
+        {
+            uint up;
+            Check(NativeMethods.tp_scene_up(scene, out up));
+            return (UpAxis)up;
+        }
+
+        public static void SetUp(SceneHandle scene, UpAxis up)
+        {
+            Check(NativeMethods.tp_scene_set_up(scene, (uint)up));
+        }
+
         public static int AddMesh(SceneHandle scene, Vector3[] vertices, uint[] indices, Material[] materials,
                                   uint[] triangleMaterials)
         {
@@ -84,6 +123,11 @@ namespace TetProbe
             Check(NativeMethods.tp_scene_set_probes(scene, positions, (UIntPtr)positions.Length));
         }
 
+        public static void SetPlayableSeeds(SceneHandle scene, Vector3[] positions)
+        {
+            Check(NativeMethods.tp_scene_set_playable_seeds(scene, positions, (UIntPtr)positions.Length));
+        }
+
         public static NativeBakeOptions DefaultBakeOptions()
         {
             EnsureVersion();
@@ -121,6 +165,24 @@ namespace TetProbe
                 int status = NativeMethods.tp_bake(scene, positions, PositionStride, (UIntPtr)positions.Length, ref options,
                     result, ShStride);
                 bridge.Finish(status);
+            }
+            return result;
+        }
+
+        /// <summary>tp_bake_occlusion: 4 bytes per position; mixedLights receives the scene's mixed light count.</summary>
+        public static ProbeOcclusion[] BakeOcclusion(SceneHandle scene, Vector3[] positions, NativeBakeOptions options,
+                                                     IProgress<float> progress, CancellationToken cancel, out int mixedLights)
+        {
+            var result = new ProbeOcclusion[positions.Length];
+            using (var bridge = ProgressBridge.Start(progress, cancel))
+            {
+                options.progress = bridge.Callback;
+                options.progress_user = bridge.User;
+                uint lights;
+                int status = NativeMethods.tp_bake_occlusion(scene, positions, PositionStride, (UIntPtr)positions.Length,
+                    ref options, result, (UIntPtr)4, out lights);
+                bridge.Finish(status);
+                mixedLights = (int)lights;
             }
             return result;
         }

@@ -4,6 +4,7 @@ using System;
 using System.Threading;
 #if UNITY_5_3_OR_NEWER
 using Vector3 = UnityEngine.Vector3;
+using Vector4 = UnityEngine.Vector4;
 #endif
 
 namespace TetProbe
@@ -20,6 +21,10 @@ namespace TetProbe
         public bool Compact;
         public long Bytes;
         public Vector3 BoundsMin, BoundsMax;
+        /// <summary>Mixed lights with occlusion probes (0 = none).</summary>
+        public int OcclusionLights;
+        /// <summary>Probe pairs that cannot see each other, kept for leak control (0 = built without a scene).</summary>
+        public int LeakEdges;
     }
 
     /// <summary>Where one query ended and what it blended (tp_location).</summary>
@@ -53,6 +58,12 @@ namespace TetProbe
         public double MergeTolerance;
         /// <summary>A set thinner than this fraction of its diagonal is treated as flat (or as a line).</summary>
         public double FlatTolerance;
+        /// <summary>Leak control (null = none): probe pairs of a cell that cannot see each other in this scene are
+        /// stored, and queries weigh down the probe behind the wall. Full library only.</summary>
+        public Scene Scene;
+        /// <summary>Occlusion probes (Baker.BakeOcclusion, one per position; null = none): the store then answers
+        /// InterpolateOcclusion with their blended visibility.</summary>
+        public OcclusionProbes Occlusion;
 
         public BuildOptions()
         {
@@ -102,13 +113,27 @@ namespace TetProbe
             if (positions == null) throw new ArgumentNullException("positions");
             if (sh != null && sh.Length != positions.Length)
                 throw new ArgumentException("sh has " + sh.Length + " entries for " + positions.Length + " positions", "sh");
-            return new ProbeStore(NativeProxy.Build(positions, sh, (options ?? new BuildOptions()).ToNative(), progress, cancel));
+            options = options ?? new BuildOptions();
+            OcclusionProbes occlusion = options.Occlusion;
+            if (occlusion != null && occlusion.Probes.Length != positions.Length)
+                throw new ArgumentException("Occlusion has " + occlusion.Probes.Length + " probes for " + positions.Length +
+                                            " positions", "options");
+            return new ProbeStore(NativeProxy.Build(positions, sh, options.ToNative(),
+                options.Scene == null ? null : options.Scene.Live(), occlusion == null ? null : occlusion.Probes,
+                occlusion == null ? 0 : occlusion.MixedLights, progress, cancel));
         }
 
-        /// <summary>Loads and validates a store file.</summary>
+        /// <summary>Loads and validates a store file (a regular file of at most 1 GiB).</summary>
         public static ProbeStore Load(string path)
         {
             return new ProbeStore(NativeProxy.LoadFile(path));
+        }
+
+        /// <summary>Loads and validates a store file; a file larger than maxFileBytes, or one that is not a regular
+        /// file, throws TetProbeException with status IO.</summary>
+        public static ProbeStore Load(string path, ulong maxFileBytes)
+        {
+            return new ProbeStore(NativeProxy.LoadFile(path, maxFileBytes));
         }
 
         /// <summary>Loads and validates a store blob (copied; safe for untrusted bytes).</summary>
@@ -118,7 +143,8 @@ namespace TetProbe
             return new ProbeStore(NativeProxy.Load(data));
         }
 
-        /// <summary>Writes the store to path atomically.</summary>
+        /// <summary>Writes the store to path atomically (a temporary file next to it, then a rename; a symbolic link is
+        /// written through and an existing file keeps its permissions).</summary>
         public void Save(string path)
         {
             NativeProxy.SaveFile(Live(), path);
@@ -142,7 +168,8 @@ namespace TetProbe
                     InnerCells = (int)n.inner_cells, OuterCells = (int)n.outer_cells, IndexBits = (int)n.index_bits,
                     Flags = n.flags, Extrapolation = (n.flags & NativeMethods.BuildNoExtrapolation) == 0,
                     Compact = (n.flags & NativeMethods.BuildCompact) != 0, Bytes = (long)n.bytes,
-                    BoundsMin = n.bounds_min, BoundsMax = n.bounds_max,
+                    BoundsMin = n.bounds_min, BoundsMax = n.bounds_max, OcclusionLights = (int)n.occlusion_lights,
+                    LeakEdges = (int)n.leak_edges,
                 };
             }
         }
@@ -175,6 +202,25 @@ namespace TetProbe
         {
             CheckBatch(positions, hints, results == null ? -1 : results.Length, "results", 1, chainHints);
             NativeProxy.InterpolateBatch(Live(), positions, hints, results, NativeProxy.BatchOptions(threads, chainHints));
+        }
+
+        /// <summary>Interpolated SH and occlusion at position (Unity's CalculateInterpolatedLightAndOcclusionProbes):
+        /// occlusion.x..w is the visibility in [0, 1] of mixed lights 0..3 blended from the probes' occlusion (1 for
+        /// channels without a light, and for a store built without occlusion); hint as Interpolate.</summary>
+        public void InterpolateOcclusion(Vector3 position, ref int hint, out SphericalHarmonicsL2 sh, out Vector4 occlusion)
+        {
+            NativeProxy.InterpolateOcclusion(Live(), position, ref hint, out sh, out occlusion);
+        }
+
+        /// <summary>Batch form of InterpolateOcclusion: sh[i] and occlusion[i] at positions[i]; hints, threads and
+        /// chainHints as the batch Interpolate.</summary>
+        public void InterpolateOcclusion(Vector3[] positions, int[] hints, SphericalHarmonicsL2[] sh, Vector4[] occlusion,
+                                         int threads = 1, bool chainHints = false)
+        {
+            CheckBatch(positions, hints, sh == null ? -1 : sh.Length, "sh", 1, chainHints);
+            CheckBatch(positions, hints, occlusion == null ? -1 : occlusion.Length, "occlusion", 1, chainHints);
+            NativeProxy.InterpolateOcclusionBatch(Live(), positions, hints, sh, occlusion,
+                                                  NativeProxy.BatchOptions(threads, chainHints));
         }
 
         /// <summary>Batch form of Weights: probes[4 i .. 4 i + 3] and weights[4 i .. 4 i + 3] for positions[i];

@@ -9,6 +9,7 @@ using System;
 using System.Runtime.InteropServices;
 #if UNITY_5_3_OR_NEWER
 using Vector3 = UnityEngine.Vector3;
+using Vector4 = UnityEngine.Vector4;
 #endif
 
 namespace TetProbe
@@ -54,6 +55,28 @@ namespace TetProbe
                 : NativeMethods.tp_store_weights_batch(store, (UIntPtr)positions.Length, ref MemoryMarshal.GetReference(positions),
                       SpanPositionStride, IntPtr.Zero, SpanHintStride, ref MemoryMarshal.GetReference(probes), SpanFourStride,
                       ref MemoryMarshal.GetReference(weights), SpanFourStride, ref options);
+            NativeProxy.Check(status);
+        }
+
+        /// <summary>Batch InterpolateOcclusion on spans: sh[i] and occlusion[i] at positions[i]; hints (empty = none),
+        /// threads and chainHints as the array form.</summary>
+        public void InterpolateOcclusion(ReadOnlySpan<Vector3> positions, Span<int> hints, Span<SphericalHarmonicsL2> sh,
+                                         Span<Vector4> occlusion, int threads = 1, bool chainHints = false)
+        {
+            CheckSpans(positions.Length, hints.Length, sh.Length, "sh", 1, chainHints);
+            CheckSpans(positions.Length, hints.Length, occlusion.Length, "occlusion", 1, chainHints);
+            TpBatchOptions options = NativeProxy.BatchOptions(threads, chainHints);
+            StoreHandle store = Live();
+            if (positions.Length == 0) return;
+            int status = hints.Length > 0
+                ? NativeMethods.tp_store_interpolate_occlusion_batch(store, (UIntPtr)positions.Length,
+                      ref MemoryMarshal.GetReference(positions), SpanPositionStride, ref MemoryMarshal.GetReference(hints),
+                      SpanHintStride, ref MemoryMarshal.GetReference(sh), SpanShStride, ref MemoryMarshal.GetReference(occlusion),
+                      SpanFourStride, ref options)
+                : NativeMethods.tp_store_interpolate_occlusion_batch(store, (UIntPtr)positions.Length,
+                      ref MemoryMarshal.GetReference(positions), SpanPositionStride, IntPtr.Zero, SpanHintStride,
+                      ref MemoryMarshal.GetReference(sh), SpanShStride, ref MemoryMarshal.GetReference(occlusion), SpanFourStride,
+                      ref options);
             NativeProxy.Check(status);
         }
 

@@ -6,6 +6,46 @@ using Vector3 = UnityEngine.Vector3;
 
 namespace TetProbe
 {
+    /// <summary>Which way is up (TP_UP_*). File: what the file says (load options only).</summary>
+    public enum UpAxis
+    {
+        File = 0,
+        PosX = 1,
+        NegX = 2,
+        PosY = 3,
+        NegY = 4,
+        PosZ = 5,
+        NegZ = 6,
+    }
+
+    /// <summary>How Scene.Load reads a file (tp_scene_load_options); a new instance holds the library's defaults.</summary>
+    public sealed class SceneLoadOptions
+    {
+        /// <summary>World units per unit of the file; 0 = the file's own unit in metres (glTF and OBJ 1, FBX its
+        /// UnitScaleFactor / 100). Point and spot intensities scale by the square of world units per metre.</summary>
+        public float Scale;
+        /// <summary>Which way is up in the file; File = what the file says (glTF and OBJ +y, FBX its UpAxis, a JSON scene
+        /// its "up"). Coordinates are kept; the scene records it (Scene.Up).</summary>
+        public UpAxis Up;
+
+        public SceneLoadOptions()
+        {
+            NativeSceneLoadOptions defaults = NativeProxy.DefaultSceneLoadOptions();
+            Scale = defaults.scale;
+            Up = (UpAxis)defaults.up;
+        }
+
+        internal NativeSceneLoadOptions ToNative()
+        {
+            if (!(Scale >= 0) || float.IsInfinity(Scale))
+                throw new ArgumentOutOfRangeException("Scale", Scale, "Scale must be 0 (the file's unit) or a finite number > 0");
+            NativeSceneLoadOptions options = NativeProxy.DefaultSceneLoadOptions();
+            options.scale = Scale;
+            options.up = (uint)Up;
+            return options;
+        }
+    }
+
     /// <summary>A bake scene over a native tp_scene. Needs the full library (the run-time library refuses every scene
     /// call with TetProbeStatus.Unsupported).</summary>
     public sealed class Scene : IDisposable
@@ -20,10 +60,33 @@ namespace TetProbe
             this.handle = handle;
         }
 
-        /// <summary>Reads a JSON scene file (meshes inline or from OBJ files relative to it, lights, sky, probes).</summary>
+        /// <summary>Reads a scene file: glTF 2.0 (.gltf, .glb), FBX, OBJ (with its .mtl) or a JSON scene
+        /// (docs/scene-format.md), in the file's own unit (as metres) and up.</summary>
         public static Scene Load(string path)
         {
             return new Scene(NativeProxy.LoadScene(path));
+        }
+
+        /// <summary>Reads a scene file with the unit and up given in options (null: the file's own). What the file holds
+        /// that a bake cannot use (cameras, textures, animations, area lights) is listed in Notes; an invalid file throws
+        /// TetProbeException with TetProbeStatus.Scene naming the file and what is wrong.</summary>
+        public static Scene Load(string path, SceneLoadOptions options)
+        {
+            return new Scene(NativeProxy.LoadScene(path, (options ?? new SceneLoadOptions()).ToNative()));
+        }
+
+        /// <summary>What loading the scene left out or converted, one note each (empty for a scene built in code).</summary>
+        public string[] Notes
+        {
+            get { return NativeProxy.Notes(Live()); }
+        }
+
+        /// <summary>Which way is up in the scene (PosY unless loaded or set otherwise); placement's walkable mode stands
+        /// probes on floors along it. UpAxis.File is refused.</summary>
+        public UpAxis Up
+        {
+            get { return NativeProxy.Up(Live()); }
+            set { NativeProxy.SetUp(Live(), value); }
         }
 
         /// <summary>Adds a mesh of triangles indices[3 t .. 3 t + 2] over vertices, all of one material; returns its id.</summary>
@@ -89,6 +152,14 @@ namespace TetProbe
                 if (value == null) throw new ArgumentNullException("value");
                 NativeProxy.SetProbes(Live(), value);
             }
+        }
+
+        /// <summary>Points known to be where objects go (spawn points; copied, an empty array clears them): placement
+        /// then keeps only candidates connected to one. A Quake 3 level loaded from its file has its spawn points.</summary>
+        public void SetPlayableSeeds(Vector3[] positions)
+        {
+            if (positions == null) throw new ArgumentNullException("positions");
+            NativeProxy.SetPlayableSeeds(Live(), positions);
         }
 
         internal SceneHandle Live()

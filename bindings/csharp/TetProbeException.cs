@@ -39,5 +39,12 @@ namespace TetProbe
         {
             Status = status;
         }
+
+        /// <summary>The library's constant name of a status, e.g. "TP_ERROR_INVALID_BLOB" (tp_status_name).</summary>
+        public static string StatusName(TetProbeStatus status)
+        {
+            NativeProxy.EnsureVersion();
+            return NativeProxy.Utf8String(NativeMethods.tp_status_name((int)status));
+        }
     }
 }

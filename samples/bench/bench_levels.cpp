@@ -1,26 +1,77 @@
 // tetprobe_bench levels ...: the real-level benchmark (Quake 3 levels of Debian's openarena-081-maps,
-// extracted into the build tree by samples/bench/setup_levels.sh).
+// extracted into the build tree by samples/bench/setup_levels.sh; `make bench` runs it through run_levels.sh).
 //
+//   tetprobe_bench levels [run] [--levels default|all|A,B,...] [--out DIR] [--quick]
+//       The part of the report: on each level, tetprobe's probe choices (probe_choices.h) in every store
+//       layout (store_layouts.h) at each probe count, the peers (level_peers.h) at the bytes of each
+//       tetprobe layout's placed store, all measured with the one metric (level_metric.h). Writes
+//       DIR/levels.json (after every level) and prints a table per level.
 //   tetprobe_bench levels eval --level NAME --probes FILE.csv [--layout ID] [--json]
 //       One probe set (x,y,z per line) on one level: baked with the level's probe settings, built with
-//       the store layout (default: every layout), measured with the level's metric (level_metric.h).
-//       Prints a table, or with --json one JSON object (the "results" rows of levels.json below).
-//   tetprobe_bench levels prepare --level NAME...
-//       Only prepares the levels' caches (playable space, evaluation points, reference, paths).
+//       the store layout (default: every layout of store_layouts.h; --layout also takes fast_leak and
+//       compact_leak, leak control), measured with the level's metric. Prints a table, or with
+//       --json {"level": <level fields below, without results>, "probe_file": str, "results": [<result>]}.
+//   tetprobe_bench levels prepare --level NAME...   only prepares (and caches) the levels
+//   tetprobe_bench levels survey                    every level of --maps: triangles, lights, spawns, size
 //
 // Common options: --maps DIR (the .bsp files; default build/levels/maps), --cache DIR (the prepared
 // levels; default build/levels/cache; "" for none), --threads N (0 = all cores). A level is a name in
-// --maps or a path to a .bsp file. The first use of a level bakes its reference (about a minute on two
+// --maps or a path to a .bsp file. The first use of a level bakes its reference (tens of seconds on two
 // cores); later uses read it from the cache, so an evaluation takes its own bake and queries only.
+//
+// levels.json (stable: fields may be added, none renamed or removed)
+// {
+//   "schema": "tetprobe-bench-levels/1", "machine": {...as every part},
+//   "settings": {"reference_rays", "probe_rays", "bounces": int, "points", "noise_points": int,
+//                "light_clearance", "frame_step": float, "paths": int, "counts": [int], "random_seeds": int,
+//                "space": {"spacing", "layer": float, "band": [min, max], "floor_cosine", "clearance": float},
+//                "placement": {"mode": str, "spacing": float, "band": [min, max], "rays": int, "error_bound": 0},
+//                "layouts": [{"id": str, "label": str}]},
+//   "metric": str, "import": str,           // the definitions, in words
+//   "all_levels": [str], "default_levels": [str],
+//   "levels": [{
+//     "name": str, "not_run": str,          // only "name" and "not_run" when the level failed
+//     "file": str, "title": str, "triangles": int, "lights": int, "light_entities": int,
+//     "faces": {"total", "polygons", "meshes", "patches", "brush_model", "billboards_left_out", "sky_left_out",
+//               "nodraw_left_out", "liquid_or_fog_left_out", "nonsolid_left_out": int},
+//     "playable": {"band_points", "free_points", "reachable_points", "spawns_used", "spawns_given": int,
+//                  "box_min": [3], "box_max": [3]},
+//     "points": int, "mean_irradiance": float,
+//     "reference_noise": {"points": int, "rms": float, "p95": float},
+//     "paths": int, "path_frames": int,
+//     "prepare_seconds": {"space": float, "reference": float, "from_cache": bool},
+//     "candidates": {"count": int, "spacing": float, "find_seconds": float, "bake_seconds": float},
+//     "results": [{                          // <result>
+//       "method": "tetprobe_placed" | "tetprobe_random" | "tetprobe_lattice" | "tetprobe_all" | "tetprobe_given"
+//               | "grid_half" | "grid_apv8" | "bricks_apv8" | "knn4" | "knn4_damped",
+//       "layout": str,                       // tetprobe: a store layout id; peers: "half" | "apv8"
+//       "label": str, "probes": int,         // bricks: samples baked
+//       "bytes": int, "resident_bytes": int, // what ships; what the loaded method holds
+//       "rms_error", "p95_error", "max_error", "worst_jump", "ns_per_query": float,
+//       "placement_seconds", "bake_seconds", "build_seconds": float,  // tetprobe choices: bake_seconds is the
+//                                            // candidates' bake time per probe times the probes
+//       "target": int | null,                // tetprobe and knn: the probe count asked for (null: all candidates)
+//       "seeds": int,                        // tetprobe_random: the results are means over this many subsamples
+//       "probe_set": "placed",               // knn: the probes it blends
+//       "budget_bytes": int, "budget_of": str,  // peers: the budget and whose bytes it is ("tetprobe placed compact 400")
+//       "note": str}],
+//     "skipped": [{"method": str, "budget_bytes" | "target": int, "why": str}]
+//   }]
+// }
 #include "bench.h"
 
+#include "level_peers.h"
 #include "level_reference.h"
 #include "level_tetprobe.h"
+#include "part_output.h"
+#include "probe_choices.h"
 #include "store_layouts.h"
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -70,6 +121,23 @@ LevelArgs parse_level_args(int argc, char** argv) {
     }
     return a;
 }
+
+const char* const kMetricText =
+    "Irradiance: Rec. 709 luminance of E(n) for the 6 axis normals. Error at each evaluation point and normal: "
+    "|E_method - E_reference| / the level's mean (of the reference over the same points and normals); rms_error and "
+    "p95_error: RMS and 95th percentile over points x normals. Evaluation points: random free points of the playable "
+    "space (grid points of the walkable band 0.2-2 m above floors, not inside geometry, flood-filled from the spawn "
+    "points; each moved by up to half a grid step), at least light_clearance from every point light. Reference: a bake "
+    "at each point with reference_rays; reference_noise: a second seed against it. worst_jump: the largest change of E "
+    "(any axis normal) between consecutive frames along walking paths, each the shortest way along the flood fill from a "
+    "spawn point to the farthest spawn point it reaches (frame_step metres a frame), "
+    "over the mean. ns_per_query: single queries along the paths, each object keeping its hint or state, median of 5 runs. "
+    "bytes: what ships (a store's blob; a peer's run-time arrays); resident_bytes: what the loaded method holds.";
+const char* const kImportText =
+    "Quake 3 levels (IBSP 46) from Debian's openarena-081-maps, imported by bake/quake3_bsp: 32 units a metre, y up; "
+    "polygons, meshes and Bezier patches (8 x 8 quads per 3 x 3 piece) of the world and brush models, one-sided, "
+    "albedo 0.5; sky, nodraw, liquid, fog and nonsolid faces left out; light entities as inverse-square point (or spot) "
+    "lights of q3map's scale, plus a sun (irradiance 3) and a sky (radiance 0.25, 0.32, 0.45): bake/quake3_scene.h.";
 
 std::string level_path(const LevelArgs& a, const std::string& level) {
     if (level.size() > 4 && level.compare(level.size() - 4, 4, ".bsp") == 0) return level;
@@ -161,6 +229,193 @@ int run_eval(const LevelArgs& a, const LevelSettings& settings) {
     return 0;
 }
 
+// The levels of the benchmark, chosen by measuring all 50 (tetprobe_bench levels survey): q3map2 drops light
+// entities unless told to keep them, so four levels have their lights; the others are lit by the stated sun
+// and sky through their sky faces.
+const std::vector<std::string> kAllLevels = {
+    "aggressor",  // small indoor, 84 lights, 3 sky faces
+    "q3dm6ish",   // indoor, 30 lights, no sky
+    "kaos",       // indoor and outdoor, 30 lights, 193 curved patches (48k triangles)
+    "oa_bases3",  // large outdoor base level, 22 lights
+    "islanddm",   // large outdoor island, sun and sky only
+    "wrackdm17",  // large, open to the sky, sun and sky only
+};
+const std::vector<std::string> kDefaultLevels = {"aggressor", "islanddm"};
+
+// Probe counts of tetprobe's sets; the peers are built at the bytes each tetprobe layout takes at each.
+const std::vector<uint32_t> kCounts = {100, 200, 400, 800};
+const std::vector<uint32_t> kQuickCounts = {50, 100};
+constexpr int kRandomSeeds = 3;
+
+// Means over the random subsamples' results (error, time and bytes).
+LevelResult mean_of(const std::vector<LevelResult>& rs) {
+    LevelResult m = rs.front();
+    m.error = LevelError();
+    m.ns_per_query = 0, m.bytes = 0, m.resident_bytes = 0, m.build_seconds = 0;
+    for (const LevelResult& r : rs) {
+        m.error.rms += r.error.rms / double(rs.size());
+        m.error.p95 += r.error.p95 / double(rs.size());
+        m.error.max += r.error.max / double(rs.size());
+        m.error.worst_jump += r.error.worst_jump / double(rs.size());
+        m.ns_per_query += r.ns_per_query / double(rs.size());
+        m.bytes += r.bytes / rs.size(), m.resident_bytes += r.resident_bytes / rs.size();
+        m.build_seconds += r.build_seconds / double(rs.size());
+    }
+    return m;
+}
+
+void print_row(const LevelResult& r, const char* what) {
+    std::printf("| %s | %s | %s | %zu | %llu | %llu | %.4f | %.4f | %.4f | %.1f |\n", what, r.method.c_str(), r.layout.c_str(),
+                r.probes, (unsigned long long)r.bytes, (unsigned long long)r.resident_bytes, r.error.rms, r.error.p95,
+                r.error.worst_jump, r.ns_per_query);
+    std::fflush(stdout);
+}
+
+Json run_level(const LevelArgs& a, const std::string& name, const LevelSettings& settings, const std::vector<uint32_t>& counts) {
+    Level level;
+    prepare_level(level_path(a, name), a.cache, settings, a.threads, &level);
+    Json out = level_json(level, settings);
+    std::printf("\n%s: %zu triangles, %zu lights, %zu playable points, mean irradiance %.4g, reference noise %.3g (p95 %.3g)\n",
+                level.name.c_str(), level.triangles, level.lights, level.playable.size() / 3, level.mean, level.noise_rms,
+                level.noise_p95);
+    std::printf("| set | method | layout | probes | bytes | resident | RMS | p95 | worst jump | ns |\n|---|---|---|---:|---:|---:|---:|---:|---:|---:|\n");
+    const PlacementRules rules;
+    const CandidateSet candidates = find_candidates(level, rules, settings);
+    const size_t candidate_count = candidates.positions.size() / 3;
+    out["candidates"] = {{"count", candidate_count}, {"spacing", rules.spacing},
+                         {"find_seconds", candidates.find_seconds}, {"bake_seconds", candidates.bake_seconds}};
+    const double bake_per_probe = candidate_count ? candidates.bake_seconds / double(candidate_count) : 0.0;
+    Json results = Json::array(), skipped = Json::array();
+    auto add = [&](LevelResult r, const Json& extra, const char* what) {
+        print_row(r, what);
+        Json j = r.json();
+        for (auto it = extra.begin(); it != extra.end(); ++it) j[it.key()] = it.value();
+        results.push_back(j);
+    };
+    auto subset = [&](const std::vector<uint32_t>& picks, std::vector<float>* p, std::vector<float>* sh) {
+        p->clear(), sh->clear();
+        for (uint32_t i : picks) {
+            p->insert(p->end(), &candidates.positions[3 * size_t(i)], &candidates.positions[3 * size_t(i)] + 3);
+            sh->insert(sh->end(), &candidates.sh[27 * size_t(i)], &candidates.sh[27 * size_t(i)] + 27);
+        }
+    };
+    std::vector<std::pair<std::string, size_t>> budgets;  // (what, bytes) the peers are built at
+    for (uint32_t n : counts) {
+        if (n > candidate_count) {
+            skipped.push_back({{"method", "tetprobe"}, {"target", n}, {"why", "more than the " + std::to_string(candidate_count) + " candidates"}});
+            continue;
+        }
+        double place_seconds = 0;
+        const std::vector<float> placed = placed_probes(level, rules, n, &place_seconds);
+        const std::vector<float> placed_sh = sh_of(level, candidates, placed, settings);
+        std::vector<float> p, sh;
+        for (const StoreLayout& layout : store_layouts()) {
+            LevelResult r = evaluate_tetprobe(level, placed, placed_sh, layout);
+            r.method = "tetprobe_placed";
+            r.label = "tetprobe, placed, " + layout.label;
+            r.placement_seconds = place_seconds;
+            r.bake_seconds = bake_per_probe * double(r.probes);
+            budgets.push_back({"tetprobe placed " + layout.id + " " + std::to_string(n), size_t(r.bytes)});
+            add(r, {{"target", n}}, "placed");
+            std::vector<LevelResult> randoms;
+            for (int seed = 0; seed < kRandomSeeds; ++seed) {
+                subset(random_pick(candidate_count, n, 100 + uint64_t(seed)), &p, &sh);
+                randoms.push_back(evaluate_tetprobe(level, p, sh, layout));
+            }
+            LevelResult m = mean_of(randoms);
+            m.method = "tetprobe_random", m.label = "tetprobe, random subsample (mean of 3), " + layout.label;
+            m.bake_seconds = bake_per_probe * double(m.probes);
+            add(m, {{"target", n}, {"seeds", kRandomSeeds}}, "random");
+            subset(lattice_pick(candidates.positions, n), &p, &sh);
+            LevelResult l = evaluate_tetprobe(level, p, sh, layout);
+            l.method = "tetprobe_lattice", l.label = "tetprobe, uniform lattice pick, " + layout.label;
+            l.bake_seconds = bake_per_probe * double(l.probes);
+            add(l, {{"target", n}}, "lattice");
+        }
+        for (bool damped : {false, true}) add(evaluate_knn(level, placed, placed_sh, damped), {{"target", n}, {"probe_set", "placed"}}, "knn");
+    }
+    for (const StoreLayout& layout : store_layouts()) {
+        LevelResult r = evaluate_tetprobe(level, candidates.positions, candidates.sh, layout);
+        r.method = "tetprobe_all", r.label = "tetprobe, all candidates, " + layout.label;
+        r.placement_seconds = candidates.find_seconds, r.bake_seconds = candidates.bake_seconds;
+        add(r, {{"target", nullptr}}, "all");
+    }
+    for (const auto& budget : budgets) {
+        const Json extra = {{"budget_bytes", budget.second}, {"budget_of", budget.first}};
+        for (GridEncoding e : {GridEncoding::half, GridEncoding::apv8}) add(evaluate_grid(level, budget.second, e, settings, a.threads), extra, "grid");
+        try {
+            add(evaluate_bricks(level, budget.second, settings, a.threads), extra, "bricks");
+        } catch (const std::runtime_error& e) {
+            skipped.push_back({{"method", "bricks_apv8"}, {"budget_bytes", budget.second}, {"why", e.what()}});
+            std::printf("| bricks | skipped at %zu bytes: %s |\n", budget.second, e.what());
+        }
+    }
+    out["results"] = results;
+    out["skipped"] = skipped;
+    return out;
+}
+
+int run_part(const LevelArgs& a, const LevelSettings& settings) {
+    std::vector<std::string> names = a.levels;
+    if (names.empty() || (names.size() == 1 && names[0] == "default")) names = kDefaultLevels;
+    if (names.size() == 1 && names[0] == "all") names = kAllLevels;
+    const std::vector<uint32_t>& counts = a.quick ? kQuickCounts : kCounts;
+    Json doc = {{"schema", "tetprobe-bench-levels/1"}, {"machine", machine_json(a.quick)}};
+    doc["settings"] = {{"reference_rays", settings.reference_rays}, {"probe_rays", settings.probe_rays},
+                       {"bounces", settings.bounces}, {"points", settings.points}, {"noise_points", settings.noise_points},
+                       {"light_clearance", settings.light_clearance}, {"paths", settings.paths},
+                       {"frame_step", settings.frame_step}, {"counts", counts}, {"random_seeds", kRandomSeeds},
+                       {"space", {{"spacing", settings.space.spacing}, {"layer", settings.space.layer},
+                                  {"band", {settings.space.band_min, settings.space.band_max}},
+                                  {"floor_cosine", settings.space.floor_cosine}, {"clearance", settings.space.clearance}}},
+                       {"placement", {{"mode", "walkable"}, {"spacing", PlacementRules().spacing},
+                                      {"band", {PlacementRules().walk_min_height, PlacementRules().walk_max_height}},
+                                      {"rays", PlacementRules().rays}, {"error_bound", 0}}},
+                       {"layouts", Json::array()}};
+    for (const StoreLayout& l : store_layouts()) doc["settings"]["layouts"].push_back({{"id", l.id}, {"label", l.label}});
+    doc["metric"] = kMetricText;
+    doc["import"] = kImportText;
+    doc["all_levels"] = kAllLevels;
+    doc["default_levels"] = kDefaultLevels;
+    Json levels = Json::array();
+    int status = 0;
+    for (const std::string& name : names) {
+        try {
+            levels.push_back(run_level(a, name, settings, counts));
+        } catch (const std::exception& e) {
+            std::printf("%s: not run: %s\n", name.c_str(), e.what());
+            levels.push_back({{"name", name}, {"not_run", e.what()}});
+            status = 1;
+        }
+        if (!a.out.empty()) {
+            doc["levels"] = levels;
+            write_json_file(a.out, "levels.json", doc);  // after every level: a later failure keeps the earlier ones
+        }
+    }
+    return status;
+}
+
+// Every level of --maps: what the choice of the benchmark's levels was made from.
+int run_survey(const LevelArgs& a) {
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(a.maps))
+        if (entry.path().extension() == ".bsp") files.push_back(entry.path().string());
+    std::sort(files.begin(), files.end());
+    std::printf("| level | triangles | light entities | spawn points | sky faces | size (m) |\n|---|---:|---:|---:|---:|---|\n");
+    for (const std::string& file : files) {
+        try {
+            const tetprobe::Quake3Level l = tetprobe::read_quake3_bsp(file);
+            float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+            for (size_t i = 0; i < l.vertices.size(); ++i) lo[i % 3] = std::min(lo[i % 3], l.vertices[i]), hi[i % 3] = std::max(hi[i % 3], l.vertices[i]);
+            std::printf("| %s | %zu | %zu | %zu | %u | %.0f x %.0f x %.0f |\n", fs::path(file).stem().c_str(), l.triangle_count(),
+                        l.lights.size(), l.spawn_points.size() / 3, l.counts.sky, hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]);
+        } catch (const std::exception& e) {
+            std::printf("| %s | not read: %s |\n", fs::path(file).stem().c_str(), e.what());
+        }
+    }
+    return 0;
+}
+
 int run_prepare(const LevelArgs& a, const LevelSettings& settings) {
     for (const std::string& name : a.levels) {
         Level level;
@@ -178,7 +433,9 @@ int run_levels_bench(int argc, char** argv) {
         LevelSettings settings;
         if (a.command == "eval") return run_eval(a, settings);
         if (a.command == "prepare") return run_prepare(a, settings);
-        std::fprintf(stderr, "usage: tetprobe_bench levels eval|prepare ... (see samples/bench/bench_levels.cpp)\n");
+        if (a.command == "survey") return run_survey(a);
+        if (a.command.empty() || a.command == "run") return run_part(a, settings);
+        std::fprintf(stderr, "usage: tetprobe_bench levels [run]|eval|prepare|survey ... (see samples/bench/bench_levels.cpp)\n");
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetprobe_bench levels: %s\n", e.what());

@@ -2,7 +2,8 @@
 // objects on 1 and 2 threads, cold, teleport, outside the hull) next to the blend-only floor, a plain
 // float walk over the same mesh (plain_walk.h) and CGAL's exact locate with hint (cgal_peer.h), for
 // 1.5k, 10k and 65k probes; walk steps and fallbacks; bytes per probe of the fast and compact layouts;
-// build time next to TetGen's own call; then the headline ratios against the targets of issue 7.
+// build time next to TetGen's own call; rebuilding the cells at load (core/cell_rebuild.h) next to
+// TetGen's own call; then the headline ratios against the targets of issues 7 and 17.
 // Prints markdown tables; every time is the median of several repetitions, all seeds are fixed, and
 // every method runs on the same probes and the same query points.
 #include "bench.h"
@@ -14,7 +15,9 @@
 #include "plain_walk.h"
 #include "query_sets.h"
 
+#include "bake/store_builder.h"
 #include "capi/tetprobe.h"
+#include "core/cell_rebuild.h"
 #include "core/half.h"
 
 #include <tetgen.h>
@@ -305,7 +308,25 @@ struct SizeResult {
     size_t cgal_infinite = 0;
     tp_store_info fast{}, compact{};
     double build_ms = 0, build_compact_ms = 0, tetgen_ms = 0;
+    double rebuild_ms = 0;  // core's rebuild of cells, neighbours and start grid from the stored probes
 };
+
+// core's rebuild_cells on the stored probes of the same points (what a store that keeps no cells
+// costs at load): Delaunay, hull and outer cells, ordering, start grid.
+double time_rebuild(const std::vector<float>& positions) {
+    tetprobe::BuildSettings settings;
+    const tetprobe::StoreData d =
+        tetprobe::build_store_data(positions.data(), 12, nullptr, 108, positions.size() / 3, settings);
+    return median_seconds(
+        [&] {
+            const Clock::time_point t0 = Clock::now();
+            const tetprobe::RebuiltCells r = tetprobe::rebuild_cells(d.positions.data(), d.probe_count(), d.dimension, d.axis,
+                                                                     true, d.bounds_min, d.bounds_max, d.grid);
+            const double seconds = seconds_since(t0);
+            return r.cell_vertices == d.cell_vertices ? seconds : NAN;  // a rebuild must give the stored cells
+        },
+        kBuildRepetitions);
+}
 
 bool run_size(size_t n, SizeResult* r, float* sink) {
     r->probes = n;
@@ -333,6 +354,7 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
                                     1);
     if (!fast || !compact) return false;
     r->tetgen_ms = 1e3 * time_tetgen(positions);
+    r->rebuild_ms = 1e3 * time_rebuild(positions);
     r->fast = store_info(fast.get());
     r->compact = store_info(compact.get());
 
@@ -517,6 +539,17 @@ int run_store_bench(int argc, char** argv) {
     std::printf("\nbuild: `tp_store_build` on the same points (screening, merging, TetGen, hull and outer cells, "
                 "ordering, start grid, blob); TetGen: its Delaunay call alone.\n\n");
 
+    std::printf("### Rebuilding cells at load\n\n");
+    std::printf("| probes | rebuild ms | rebuild ms per 10k probes | TetGen tetrahedralize(\"Qz\") ms | rebuild / TetGen |\n");
+    std::printf("| ---: | ---: | ---: | ---: | ---: |\n");
+    for (int i = 0; i < kSizes; ++i)
+        std::printf("| %zu | %s | %s | %.1f | %s |\n", r[i].probes, fmt("%.1f", r[i].rebuild_ms).c_str(),
+                    fmt("%.1f", r[i].rebuild_ms * 1e4 / r[i].probes).c_str(), r[i].tetgen_ms,
+                    fmt("%.2fx", r[i].rebuild_ms / r[i].tetgen_ms).c_str());
+    std::printf("\nrebuild: core's `rebuild_cells` from the stored probes (exact Delaunay, hull and outer cells, "
+                "ordering, neighbours, start grid), which gives the stored cells index for index (a run that does not "
+                "prints -); TetGen: its Delaunay call alone on the same points.\n\n");
+
     std::printf("### Headline ratios (this run; targets of issue 7)\n\n");
     std::printf("| ratio | %zu probes | %zu probes | %zu probes | target | |\n", kProbeCounts[0], kProbeCounts[1],
                 kProbeCounts[2]);
@@ -558,6 +591,8 @@ int run_store_bench(int argc, char** argv) {
     }
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].build_ms / r[i].tetgen_ms;
     print_ratio("build / TetGen", v, "%.2fx", "<= 1.5x at 10k and 65k", true, 1.5, large);
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].rebuild_ms * 1e4 / r[i].probes;
+    print_ratio("rebuild at load, ms per 10k probes (issue 17)", v, "%.1f", "<= 20", true, 20.0, all);
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].cold / r[i].single;
     print_ratio("cold / coherent", v, "%.2fx", "<= 4x at 65k", true, 4.0, last);
     for (int i = 0; i < kSizes; ++i) v[i] = 100.0 * r[i].walk_outside_cold.fallback;

@@ -1,5 +1,7 @@
 #include "grid_peer.h"
 
+#include "trilinear_blend.h"
+
 #include "core/half.h"
 
 #include <algorithm>
@@ -50,7 +52,16 @@ GridPeer::GridPeer(const float lo[3], const float hi[3], const int dims[3]) {
         lo_[k] = lo[k];
         dims_[k] = dims[k];
         cell_[k] = dims[k] > 1 ? (hi[k] - lo[k]) / float(dims[k] - 1) : 0.0f;
+        inv_cell_[k] = dims[k] > 1 ? 1.0f / cell_[k] : 0.0f;
     }
+    // An axis of one probe has stride 0: its +1 corner is the same record, and its fraction is 0.
+    size_t step = kGridHalves * sizeof(uint16_t);
+    for (int k = 0; k < 3; ++k) {
+        stride_[k] = dims_[k] > 1 ? step : 0;
+        step *= size_t(dims_[k]);
+    }
+    for (int c = 0; c < 8; ++c)
+        corner_offsets_[c] = (c & 1 ? stride_[0] : 0) + (c & 2 ? stride_[1] : 0) + (c & 4 ? stride_[2] : 0);
 }
 
 std::vector<float> GridPeer::positions() const {
@@ -67,42 +78,22 @@ std::vector<float> GridPeer::positions() const {
 
 void GridPeer::set_sh(const std::vector<float>& sh) {
     if (sh.size() != 27 * probe_count()) throw std::invalid_argument("GridPeer::set_sh: 27 floats per probe");
-    halves_.resize(sh.size());
-    for (size_t i = 0; i < sh.size(); ++i) halves_[i] = tetprobe::float_to_half(sh[i]);
+    halves_.assign(kGridHalves * probe_count(), 0);
+    for (size_t p = 0; p < probe_count(); ++p)
+        for (int i = 0; i < 27; ++i) halves_[kGridHalves * p + size_t(i)] = tetprobe::float_to_half(sh[27 * p + size_t(i)]);
 }
 
 void GridPeer::interpolate(const float position[3], float out_sh[27]) const {
-    int base[3];
     float frac[3];
+    size_t offset = 0;
     for (int k = 0; k < 3; ++k) {
-        if (dims_[k] == 1) {
-            base[k] = 0, frac[k] = 0;
-            continue;
-        }
-        const float u = std::min(std::max((position[k] - lo_[k]) / cell_[k], 0.0f), float(dims_[k] - 1));
-        base[k] = std::min(int(u), dims_[k] - 2);
-        frac[k] = u - float(base[k]);
+        // On an axis of one probe u is 0 (inv_cell 0), the base 0 and the fraction 0.
+        const float u = std::min(std::max((position[k] - lo_[k]) * inv_cell_[k], 0.0f), float(dims_[k] - 1));
+        const int base = std::max(std::min(int(u), dims_[k] - 2), 0);
+        frac[k] = u - float(base);
+        offset += size_t(base) * stride_[k];
     }
-    // The 8 corners as two blends of 4 (core's half blend); a corner across an axis of one probe has weight 0.
-    const uint16_t* corners[8];
-    float weights[8];
-    for (int corner = 0; corner < 8; ++corner) {
-        float weight = 1;
-        size_t index = 0, stride = 1;
-        for (int k = 0; k < 3; ++k) {
-            const int up = (corner >> k) & 1;
-            if (up && dims_[k] == 1) weight = 0;
-            weight *= up ? frac[k] : 1 - frac[k];
-            index += stride * size_t(base[k] + (dims_[k] > 1 ? up : 0));
-            stride *= size_t(dims_[k]);
-        }
-        corners[corner] = &halves_[27 * index];
-        weights[corner] = weight;
-    }
-    float upper[27];
-    tetprobe::blend_sh_halves(corners, weights, out_sh);
-    tetprobe::blend_sh_halves(corners + 4, weights + 4, upper);
-    for (int i = 0; i < 27; ++i) out_sh[i] += upper[i];
+    trilinear_halves(reinterpret_cast<const uint8_t*>(halves_.data()) + offset, corner_offsets_, frac, out_sh);
 }
 
 }  // namespace bench

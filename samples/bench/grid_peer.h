@@ -1,6 +1,7 @@
 // Peer of the benchmark (never linked into a tetprobe library): a uniform grid of probes with trilinear
 // interpolation, the light-probe-proxy-volume / irradiance-volume approach. SH are kept as 27 halves per
-// probe, as a shipping grid would store them.
+// probe, as a shipping grid would store them (in memory padded to 28, so the blend's loads are whole:
+// trilinear_blend.h).
 #pragma once
 
 #include <cstddef>
@@ -26,16 +27,19 @@ public:
     void set_sh(const std::vector<float>& sh);
     // Trilinear blend of the 8 surrounding probes; a point outside the grid is clamped onto it.
     void interpolate(const float position[3], float out_sh[27]) const;
-    // Run-time data: 27 halves per probe plus the header (origin, cell size, dims).
-    size_t bytes() const { return halves_.size() * sizeof(uint16_t) + kHeaderBytes; }
+    // Run-time data as it ships: 27 halves per probe plus the header (origin, cell size, dims).
+    size_t bytes() const { return probe_count() * 27 * sizeof(uint16_t) + kHeaderBytes; }
 
     static constexpr size_t kHeaderBytes = 3 * sizeof(float) + 3 * sizeof(float) + 3 * sizeof(int32_t);
 
 private:
     float lo_[3];
-    float cell_[3];  // spacing per axis (0 on an axis with one probe)
+    float cell_[3];      // spacing per axis (0 on an axis with one probe)
+    float inv_cell_[3];  // 0 on an axis with one probe
     int dims_[3];
-    std::vector<uint16_t> halves_;
+    size_t stride_[3];   // bytes between neighbouring records along each axis (0 on an axis with one probe)
+    size_t corner_offsets_[8];
+    std::vector<uint16_t> halves_;  // 28 per probe
 };
 
 }  // namespace bench

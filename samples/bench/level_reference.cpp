@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -37,7 +38,7 @@ std::vector<float> bake(const tp_scene* scene, const float* positions, size_t co
 }
 
 // Bumped whenever what the cache holds changes meaning.
-constexpr int kCacheVersion = 1;
+constexpr int kCacheVersion = 2;
 
 }  // namespace
 
@@ -108,11 +109,22 @@ void prepare_level(const std::string& bsp, const std::string& cache_dir, const L
             for (double c : light.position) lights.push_back(float(c));
     level.points = draw_free_points(level.scene, space, settings.points, settings.reference_seed, lights,
                                     settings.light_clearance);
-    // Paths: from spawn point k to the one half the list away, for the first `paths` spawn points.
-    const size_t seeds = space.seeds.size();
-    for (size_t k = 0; k < settings.paths && seeds > 1; ++k) {
-        const uint32_t from = space.seeds[k % seeds], to = space.seeds[(k + seeds / 2) % seeds];
-        if (from == to) continue;
+    // Paths: from spawn point k (in the level's order) to the spawn point farthest from it that the same
+    // connected part of the playable space holds, for the first spawn points that have one, each pair once.
+    const std::vector<uint32_t> component = component_labels(space);
+    std::vector<std::pair<uint32_t, uint32_t>> pairs;
+    for (size_t k = 0; k < space.seeds.size() && level.path_frames.size() < settings.paths; ++k) {
+        const uint32_t from = space.seeds[k];
+        uint32_t to = from;
+        double farthest = 0;
+        for (uint32_t other : space.seeds) {
+            if (component[other] != component[from]) continue;
+            double d2 = 0;
+            for (int a = 0; a < 3; ++a) d2 += double(space.points[3 * other + a] - space.points[3 * from + a]) * (space.points[3 * other + a] - space.points[3 * from + a]);
+            if (d2 > farthest) farthest = d2, to = other;
+        }
+        if (to == from || std::find(pairs.begin(), pairs.end(), std::make_pair(to, from)) != pairs.end()) continue;
+        pairs.push_back({from, to});
         const std::vector<float> frames = walking_path(space, from, to, settings.frame_step);
         if (frames.size() < 6) continue;
         level.path_points.insert(level.path_points.end(), frames.begin(), frames.end());

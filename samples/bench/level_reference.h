@@ -26,7 +26,7 @@ struct LevelSettings {
     size_t points = 1000;             // evaluation points
     size_t noise_points = 250;        // of those, baked again with noise_seed
     double light_clearance = 1.0;     // evaluation points keep this far from a point light (its 1/d^2 peak)
-    size_t paths = 4;                 // walking paths between spawn points
+    size_t paths = 4;                 // walking paths: each from a spawn point to the farthest one it can reach
     double frame_step = 10.0 / 60.0;  // metres a frame: Q3's run speed (320 units/s) at 60 frames a second
     PlayableSpaceSettings space;
 

@@ -293,6 +293,24 @@ std::vector<float> draw_free_points(const tetprobe::Scene& scene, const Playable
     return out;
 }
 
+std::vector<uint32_t> component_labels(const PlayableSpace& space) {
+    std::vector<uint32_t> label(space.count(), UINT32_MAX);
+    uint32_t next = 0;
+    for (uint32_t start = 0; start < space.count(); ++start) {
+        if (label[start] != UINT32_MAX) continue;
+        std::deque<uint32_t> queue{start};
+        label[start] = next;
+        while (!queue.empty()) {
+            const uint32_t i = queue.front();
+            queue.pop_front();
+            for (uint32_t k = space.neighbour_start[i]; k < space.neighbour_start[i + 1]; ++k)
+                if (label[space.neighbours[k]] == UINT32_MAX) label[space.neighbours[k]] = next, queue.push_back(space.neighbours[k]);
+        }
+        ++next;
+    }
+    return label;
+}
+
 std::vector<float> walking_path(const PlayableSpace& space, uint32_t from, uint32_t to, double step) {
     const std::vector<uint32_t> nodes = grid_path(space, from, to);
     std::vector<float> frames;

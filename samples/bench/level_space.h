@@ -55,6 +55,10 @@ std::vector<uint32_t> grid_path(const PlayableSpace& space, uint32_t from, uint3
 std::vector<float> draw_free_points(const tetprobe::Scene& scene, const PlayableSpace& space, size_t count,
                                     uint64_t seed, const std::vector<float>& avoid, double clearance);
 
+// The connected component of each reachable point (0, 1, ...: jump pads and teleporters can split a level's
+// walkable space into parts that spawn points reach separately).
+std::vector<uint32_t> component_labels(const PlayableSpace& space);
+
 // A walk along grid_path from `from` to `to`, one frame every `step` metres along its segments (3 floats
 // per frame); empty when they are not connected.
 std::vector<float> walking_path(const PlayableSpace& space, uint32_t from, uint32_t to, double step);

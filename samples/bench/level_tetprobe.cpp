@@ -39,7 +39,7 @@ LevelResult evaluate_tetprobe(const Level& level, const std::vector<float>& posi
     r.probes = positions.size() / 3;
     tp_build_options options;
     tp_build_options_init(&options);
-    layout.apply(&options);
+    layout.apply(&options, level.handle.get());
     tp_store* built = nullptr;
     const auto start = std::chrono::steady_clock::now();
     if (tp_store_build(positions.data(), 0, sh.data(), 0, r.probes, &options, &built) != TP_OK)

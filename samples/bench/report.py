@@ -3,8 +3,8 @@
 Usage: /usr/bin/python3 samples/bench/report.py DIR
 
 Reads what `tetprobe_bench ... --out DIR` and samples/bench/scipy_locate.py wrote into DIR
-(methods.json, precision.json, locate.json, scipy_locate.json, bake.json, probes.json, leak.json, and the
-store benchmark's markdown store.md) and what samples/bench/placement_vs_uniform.py wrote (placement.json) and writes DIR/report.md and the plots (report_plots.py) beside it,
+(levels.json, methods.json, precision.json, locate.json, scipy_locate.json, bake.json, probes.json, leak.json,
+and the store benchmark's markdown store.md) and what samples/bench/placement_vs_uniform.py wrote (placement.json) and writes DIR/report.md and the plots (report_plots.py) beside it,
 and DIR/readme_section.md, the README's digest (images under docs/bench/, where `make bench-docs`
 copies them).
 A part whose file is missing, unreadable or marked "not_run", and a peer a part could not run, is
@@ -16,7 +16,8 @@ import os
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import report_plots  # noqa: E402  (beside this file)
+import report_levels  # noqa: E402  (beside this file)
+import report_plots  # noqa: E402
 
 PARTS = {
     "methods": ("methods.json", "tetprobe_bench methods"),
@@ -27,6 +28,7 @@ PARTS = {
     "probes": ("probes.json", "tetprobe_bench probes"),
     "leak": ("leak.json", "tetprobe_bench leak"),
     "placement": ("placement.json", "samples/bench/placement_vs_uniform.py"),
+    "levels": ("levels.json", "tetprobe_bench levels (samples/bench/run_levels.sh)"),
 }
 
 
@@ -99,6 +101,51 @@ class Report:
         if name:
             return image(name, os.path.splitext(name)[0].replace("_", " "))
         return not_run("plot %s: %s" % (method, why))
+
+    # ---- real levels (first: the report's answer to "what does accuracy cost")
+
+    def real_levels(self):
+        out = ["## Real levels: what accuracy costs against the probe volumes engines ship", ""]
+        doc = self.docs.get("levels")
+        if doc is None:
+            return out + not_run(self.missing["levels"]) + [""]
+        st = doc.get("settings", {})
+        placement = st.get("placement", {})
+        out += ["Levels: %s (`make bench` runs %s by default; `make bench BENCH_LEVELS=all` runs %s)." % (
+                    ", ".join(l.get("name", "?") for l in doc.get("levels", [])), ", ".join(doc.get("default_levels", [])),
+                    ", ".join(doc.get("all_levels", []))), "",
+                "- import: %s" % doc.get("import", "?"),
+                "- metric (every part and method): %s" % doc.get("metric", "?"),
+                "- bake: every method's probes with %s rays and %s bounces (seed 1); the reference with %s rays at %s "
+                "points (its noise: a second seed at %s of them)." % (
+                    st.get("probe_rays"), st.get("bounces"), st.get("reference_rays"), st.get("points"),
+                    st.get("noise_points")),
+                "- tetprobe's probe sets: %s probes chosen among the same candidates (tp_place_probes, %s mode, "
+                "spacing %s m, band %s m, no pruning), each chosen probe's SH from the candidates' one bake: placed "
+                "(tp_place_probes, target N, %s-ray candidate bake of its own), a random subsample (mean of %s seeds), "
+                "a uniform lattice pick, and all candidates; every store layout (%s)." % (
+                    " / ".join(str(c) for c in st.get("counts", [])), placement.get("mode"), placement.get("spacing"),
+                    placement.get("band"), placement.get("rays"), st.get("random_seeds"),
+                    ", ".join(l["id"] for l in st.get("layouts", []))),
+                "- peers, at the bytes of each tetprobe layout's placed store: a uniform grid over the playable "
+                "space's box (trilinear; probes inside geometry dilated from valid neighbours) in half SH (54 bytes a "
+                "probe) and in APV's 8-bit L2 (32); an adaptive brick grid like Unreal's Volumetric Lightmap (4^3-cell "
+                "bricks with border samples at cell sizes x16, x4, x1, refined near surfaces where lighting changes, "
+                "an indirection grid, 8-bit); 4 nearest probes (inverse distance, without and with damping) on the "
+                "placed set.", ""]
+        out += ["**Summary** (compact layout; ratio > 1: tetprobe has less error than the best grid peer at equal "
+                "memory):", ""]
+        out += table(report_levels.SUMMARY_HEADER, report_levels.summary_rows(doc)) + [""]
+        for level in doc.get("levels", []):
+            if level.get("not_run"):
+                self.not_run.append(("real level %s" % level.get("name"), level["not_run"]))
+                out += report_levels.level_section(level, st, [])
+                continue
+            for s in level.get("skipped", []):
+                self.not_run.append(("%s on %s at %s" % (s.get("method"), level.get("name"),
+                                                         num(s.get("budget_bytes", s.get("target")))), s.get("why")))
+            out += report_levels.level_section(level, st, self.plot("levels_error_vs_bytes", level))
+        return out
 
     # ---- 1. interpolation methods
 
@@ -356,6 +403,13 @@ class Report:
                 if ours.get("rms_error") and grid.get("rms_error") is not None:
                     rows.append(("grid error / ours at equal memory (RMS), %s" % scene.get("name"),
                                  num(grid["rms_error"] / ours["rms_error"]) + "x", "methods.json"))
+        levels = self.docs.get("levels")
+        for level in (levels or {}).get("levels", []):
+            rows_of_level = [r for r in report_levels.equal_memory(level) if r["layout"] == "compact" and r["ratio_placed"]]
+            if rows_of_level:
+                r = rows_of_level[-1]
+                rows.append(("best grid peer / tetprobe placed at equal memory (RMS), %s, %s probes, compact" % (
+                    level["name"], num(r["target"])), num(r["ratio_placed"]) + "x", "levels.json"))
         bake = self.docs.get("bake")
         if bake:
             for c in bake.get("culling", []):
@@ -386,7 +440,7 @@ class Report:
                 text.replace("\n## Store benchmark\n", "\n").replace("## Store benchmark\n", "", 1), ""]
 
     def machine(self):
-        for part in ("methods", "locate", "bake", "probes"):
+        for part in ("levels", "methods", "locate", "bake", "probes"):
             m = (self.docs.get(part) or {}).get("machine")
             if m:
                 return ["Machine: %s, %s hardware threads; 1-minute load average at the %s part: %s.%s" % (
@@ -396,7 +450,7 @@ class Report:
 
     def markdown(self):
         body = []
-        for section in (self.methods, self.precision, self.locate, self.bake, self.probe_count, self.leak,
+        for section in (self.real_levels, self.methods, self.precision, self.locate, self.bake, self.probe_count, self.leak,
                         self.placement, self.headline, self.store):
             body += section()
         out = ["# tetprobe benchmark report", "",
@@ -435,6 +489,15 @@ def placement_rows(doc):
 def readme_section(report, images="docs/bench/"):
     """The README's digest of a report: the headline ratios and the key tables, images from `images`."""
     out = ["Machine: " + report.machine()[0].split("Machine: ", 1)[1] if report.machine() else "", ""]
+    levels = report.docs.get("levels")
+    if levels:
+        out += ["**Real levels** (Quake 3 arenas of Debian's openarena-081-maps; RMS and 95th-percentile luminance "
+                "irradiance error over 6 normals at free points of the playable space against a %s-ray reference, "
+                "relative to the level's mean; peers built at the same bytes as tetprobe's compact store; ratio > 1: "
+                "tetprobe has less error)" % levels.get("settings", {}).get("reference_rays", "?"), ""]
+        out += table(report_levels.SUMMARY_HEADER, report_levels.summary_rows(levels)) + [""]
+        out += ["![%s](%slevels_error_vs_bytes_%s.png)" % (l["name"], images, report_plots._slug(l["name"]))
+                for l in levels.get("levels", []) if not l.get("not_run")] + [""]
     ratios = report.ratios()
     if ratios:
         out += ["**Headline ratios**", ""] + table([("ratio", "<"), ("this run", ">")],

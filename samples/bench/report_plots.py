@@ -222,3 +222,42 @@ class Plotter:
         right.legend(fontsize=7, loc="lower left")
         right.grid(True, alpha=0.3)
         return fig, "placement_error.png"
+
+    # ---- real levels
+
+    def levels_error_vs_bytes(self, level):
+        """Error (RMS, and the 95th percentile) against bytes for every method on one real level."""
+        plt = self.plt
+        fig, axes = plt.subplots(1, 2, figsize=(11.5, 4.6), sharex=True)
+        styles = [  # (method, layout or None, label, line style, marker)
+            ("tetprobe_placed", "fast", "tetprobe placed, fast layout", "-", "o"),
+            ("tetprobe_placed", "compact", "tetprobe placed, compact layout", "-", "s"),
+            ("tetprobe_random", "compact", "tetprobe random subsample, compact (mean of 3)", "--", "v"),
+            ("tetprobe_lattice", "compact", "tetprobe lattice pick, compact", "--", "^"),
+            ("tetprobe_all", None, "tetprobe all candidates", "", "*"),
+            ("grid_half", None, "uniform grid, dilated, half SH", "-", "D"),
+            ("grid_apv8", None, "uniform grid, dilated, APV 8-bit L2", "-", "P"),
+            ("bricks_apv8", None, "brick grid (Volumetric Lightmap), 8-bit", "-", "X"),
+            ("knn4", None, "4 nearest, inverse distance", ":", "<"),
+            ("knn4_damped", None, "4 nearest, damped", ":", ">"),
+        ]
+        results = level["results"]
+        for ax, key, title in ((axes[0], "rms_error", "RMS"), (axes[1], "p95_error", "95th percentile")):
+            for method, layout, label, line, marker in styles:
+                points = sorted((r["bytes"], r[key]) for r in results
+                                if r["method"] == method and (layout is None or r["layout"] == layout)
+                                and r.get(key) is not None)
+                if points:
+                    ax.plot([p[0] for p in points], [p[1] for p in points], linestyle=line or "none", marker=marker,
+                            markersize=5, label=label)
+            noise = level.get("reference_noise", {}).get("rms" if key == "rms_error" else "p95")
+            if noise:
+                ax.axhline(noise, color="grey", linestyle=":", linewidth=1, label="reference noise")
+            ax.set_xscale("log")
+            ax.set_yscale("log")
+            ax.set_xlabel("bytes (what ships)")
+            ax.set_ylabel("%s luminance irradiance error / level mean" % title)
+            ax.set_title("%s: %s error vs memory" % (level["name"], title))
+            ax.grid(True, which="both", alpha=0.3)
+        axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(1.1, -0.14), ncol=4)
+        return fig, "levels_error_vs_bytes_%s.png" % _slug(level["name"])

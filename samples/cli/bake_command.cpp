@@ -1,5 +1,5 @@
-// `tetprobe bake` and `plan`: a scene file's probes baked (effects plan, progress, summary) into a store, or
-// only the effects plan of that bake.
+// `tetprobe bake` and `plan`: probes (the scene's own, or a probe file's) baked (effects plan, progress,
+// summary) into a store or a probe file with SH, or only the effects plan of that bake.
 #include "cli.h"
 
 #include <nlohmann/json.hpp>
@@ -41,17 +41,25 @@ tp_bake_options bake_options(const BakeSettings& settings) {
     return options;
 }
 
-ScenePtr load_scene(const std::string& path) {
-    tp_scene* scene = nullptr;
-    check(tp_scene_load_file(path.c_str(), &scene), "loading the scene");
-    return ScenePtr(scene);
+bool ends_with(const std::string& text, const std::string& suffix) {
+    return text.size() >= suffix.size() && text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+// The positions to bake: --probes FILE, or the scene's own.
+std::vector<float> probes_to_bake(const Arguments& a) {
+    if (!a.has("--probes")) return {};
+    const std::string path = a.value("--probes", "");
+    const ProbeFile file = read_probe_file(path);
+    if (file.positions.empty()) throw Failure(path + ": no probes");
+    if (!file.sh.empty()) std::fprintf(stderr, "tetprobe: note: %s: its SH columns are not used (the bake makes new ones)\n", path.c_str());
+    return file.positions;
 }
 
 }  // namespace
 
-BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings) {
+BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings, const std::vector<float>& positions) {
     BakeResult result;
-    result.positions = scene_probes(scene);
+    result.positions = positions.empty() ? scene_probes(scene) : positions;
     const size_t count = result.positions.size() / 3;
     tp_bake_options options = bake_options(settings);
     std::memset(&result.plan, 0, sizeof result.plan);
@@ -76,17 +84,24 @@ BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings) {
 }
 
 int command_bake(const std::vector<std::string>& args) {
-    const Arguments a = parse_arguments(args, {"-o", "--rays", "--bounces", "--seed", "--threads"}, {});
-    if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("bake takes SCENE.json and -o STORE");
+    const Arguments a =
+        parse_arguments(args, with_scene_options({"-o", "--probes", "--rays", "--bounces", "--seed", "--threads"}), {});
+    if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("bake takes SCENE and -o STORE (or -o PROBES.csv)");
     const BakeSettings settings = bake_settings(a, 256);
-    ScenePtr scene = load_scene(a.positional[0]);
-    const BakeResult baked = bake_scene(scene.get(), settings);
+    const std::vector<float> positions = probes_to_bake(a);
+    ScenePtr scene = load_scene(a.positional[0], a);
+    const BakeResult baked = bake_scene(scene.get(), settings, positions);
     const size_t probes = baked.positions.size() / 3;
     std::printf("baked %zu probes x %u rays, %u bounces (plan: %u) in %.2f s (%.0f probe-rays/s)\n", probes,
                 settings.rays, settings.bounces, baked.plan.bounces, baked.seconds,
                 double(probes) * settings.rays / (baked.seconds > 0 ? baked.seconds : 1e-9));
-    StorePtr store = build_store(baked.positions, baked.sh, false);
     const std::string out = a.value("-o", "");
+    if (ends_with(out, ".csv")) {
+        write_probe_file(out, baked.positions, baked.sh);
+        std::printf("wrote %s: %zu probes with their SH\n", out.c_str(), probes);
+        return 0;
+    }
+    StorePtr store = build_store(baked.positions, baked.sh, false);
     check(tp_store_save_file(store.get(), out.c_str()), "saving the store");
     const tp_store_info info = store_info(store.get());
     std::printf("wrote %s: %u probes (%u merged), %u cells, %u-bit indices, %" PRIu64 " bytes\n", out.c_str(),
@@ -95,11 +110,13 @@ int command_bake(const std::vector<std::string>& args) {
 }
 
 int command_plan(const std::vector<std::string>& args) {
-    const Arguments a = parse_arguments(args, {"--rays", "--bounces", "--seed", "--threads"}, {"--json"});
-    if (a.positional.size() != 1) throw UsageError("plan takes SCENE.json");
+    const Arguments a =
+        parse_arguments(args, with_scene_options({"--probes", "--rays", "--bounces", "--seed", "--threads"}), {"--json"});
+    if (a.positional.size() != 1) throw UsageError("plan takes SCENE");
     const BakeSettings settings = bake_settings(a, 256);
-    ScenePtr scene = load_scene(a.positional[0]);
-    const std::vector<float> positions = scene_probes(scene.get());
+    const std::vector<float> given = probes_to_bake(a);
+    ScenePtr scene = load_scene(a.positional[0], a);
+    const std::vector<float> positions = given.empty() ? scene_probes(scene.get()) : given;
     const tp_bake_options options = bake_options(settings);
     tp_effects_plan plan;
     std::memset(&plan, 0, sizeof plan);

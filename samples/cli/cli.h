@@ -37,8 +37,9 @@ using ScenePtr = std::unique_ptr<tp_scene, SceneRelease>;
 
 StorePtr load_store(const std::string& path);
 // flags: TP_BUILD_* (e.g. TP_BUILD_COMPACT), on top of the library's default options.
+// scene: leak control (tp_build_options.scene), or NULL.
 StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,
-                     uint32_t flags = 0);
+                     uint32_t flags = 0, const tp_scene* scene = nullptr);
 // "compact" or "fast": the layout of a store's blob (TP_BUILD_COMPACT in its flags).
 const char* store_layout(const tp_store_info& info);
 tp_store_info store_info(const tp_store* store);
@@ -50,6 +51,10 @@ struct ProbeFile {
 };
 ProbeFile read_probe_file(const std::string& path);
 
+// Writes a probe file (docs/probe-file.md): x,y,z and, when sh is not empty, its 27 coefficients per
+// line, every float printed so that it reads back to the same bits.
+void write_probe_file(const std::string& path, const std::vector<float>& positions, const std::vector<float>& sh);
+
 // Writes bytes to path atomically: a temporary file beside it, then a rename.
 void write_file_atomically(const std::string& path, const void* data, size_t size);
 
@@ -58,8 +63,11 @@ struct Image {
     int width = 0, height = 0;
     std::vector<unsigned char> rgb;
 };
-// Maps values to a perceptual-looking colour ramp (dark blue -> red -> yellow -> white) over [lo, hi].
-Image colour_map(const std::vector<float>& values, int width, int height, float lo, float hi);
+// Colour ramps: heat (dark blue -> red -> yellow -> white) for values, diverging (blue -> white -> red) for
+// differences around 0.
+enum class Ramp { heat, diverging };
+// Maps values to a ramp over [lo, hi].
+Image colour_map(const std::vector<float>& values, int width, int height, float lo, float hi, Ramp ramp = Ramp::heat);
 void mark(Image& image, int x, int y, const unsigned char colour[3], int radius);
 void write_png(const std::string& path, const Image& image);
 
@@ -74,9 +82,20 @@ struct SliceAxes {
     float x_lo, x_hi, z_lo, z_hi;
 };
 
+// A colour bar drawn right after panel `after_panel`: the ramp over [lo, hi] with ticks and a label.
+struct ColourBar {
+    size_t after_panel;
+    float lo, hi;
+    std::string label;
+    Ramp ramp = Ramp::heat;
+};
+
 // Panels of one size side by side on a white canvas (figure.cpp), each with its title, ticks in metres
-// and the labels "x (m)" and "z (m)", then a colour bar of colour_map's ramp over [value_lo, value_hi]
-// with ticks and value_label: a picture that says what its colours and distances mean.
+// and the labels "x (m)" and "z (m)", and colour bars among them (each after the panels it scales), then
+// an optional caption line below: a picture that says what its colours and distances mean.
+Image framed_figure(const std::vector<Image>& panels, const std::vector<std::string>& titles, const SliceAxes& axes,
+                    const std::vector<ColourBar>& bars, const std::string& caption = "");
+// The common case: one colour bar after the last panel.
 Image framed_figure(const std::vector<Image>& panels, const std::vector<std::string>& titles, const SliceAxes& axes,
                     float value_lo, float value_hi, const std::string& value_label);
 
@@ -102,6 +121,13 @@ struct Arguments {
 Arguments parse_arguments(const std::vector<std::string>& args, const std::set<std::string>& value_options,
                           const std::set<std::string>& flag_options);
 
+// The scene at path (glTF, FBX, OBJ or JSON) loaded with the options --scale and --up of a (kSceneOptions);
+// the import's notes go to stderr.
+const std::set<std::string> kSceneOptions = {"--scale", "--up"};
+ScenePtr load_scene(const std::string& path, const Arguments& a);
+// value_options with kSceneOptions added.
+std::set<std::string> with_scene_options(std::set<std::string> value_options);
+
 // The lighting bake of a scene's probes with a progress bar, shared by `bake` and `demo`.
 struct BakeSettings {
     uint32_t rays = 256;
@@ -117,7 +143,8 @@ struct BakeResult {
     double seconds = 0;
 };
 BakeSettings bake_settings(const Arguments& a, uint32_t default_rays);
-BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings);
+// positions: 3 per probe, or empty for the scene's own probes.
+BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings, const std::vector<float>& positions = {});
 
 // Replaces a scene's probes with automatically placed ones (tp_place_probes at `spacing`, pruned
 // to `error_bound`) and prints what placement did; the demo's scene uses it.

@@ -11,9 +11,12 @@ namespace cli {
 
 namespace {
 
-// Control points of the ramp: dark blue, purple, red, orange, yellow, near white.
-const float kRamp[6][3] = {{0.02f, 0.02f, 0.15f}, {0.35f, 0.05f, 0.45f}, {0.75f, 0.15f, 0.25f},
+// Control points of the heat ramp: dark blue, purple, red, orange, yellow, near white.
+const float kHeat[6][3] = {{0.02f, 0.02f, 0.15f}, {0.35f, 0.05f, 0.45f}, {0.75f, 0.15f, 0.25f},
                            {0.95f, 0.45f, 0.05f}, {0.98f, 0.80f, 0.15f}, {1.00f, 1.00f, 0.85f}};
+// Of the diverging ramp: dark blue, light blue, white (the middle: no difference), light red, dark red.
+const float kDiverging[5][3] = {{0.02f, 0.19f, 0.38f}, {0.57f, 0.77f, 0.87f}, {0.97f, 0.97f, 0.97f},
+                                {0.96f, 0.65f, 0.51f}, {0.40f, 0.00f, 0.12f}};
 
 void append_bytes(void* context, void* data, int size) {
     auto* out = static_cast<std::vector<unsigned char>*>(context);
@@ -23,7 +26,9 @@ void append_bytes(void* context, void* data, int size) {
 
 }  // namespace
 
-Image colour_map(const std::vector<float>& values, int width, int height, float lo, float hi) {
+Image colour_map(const std::vector<float>& values, int width, int height, float lo, float hi, Ramp ramp) {
+    const float(*points)[3] = ramp == Ramp::heat ? kHeat : kDiverging;
+    const int segments = ramp == Ramp::heat ? 5 : 4;
     Image image;
     image.width = width;
     image.height = height;
@@ -31,11 +36,11 @@ Image colour_map(const std::vector<float>& values, int width, int height, float 
     const float span = hi > lo ? hi - lo : 1.0f;
     for (size_t i = 0; i < size_t(width) * height; ++i) {
         float t = std::isfinite(values[i]) ? (values[i] - lo) / span : 0.0f;
-        t = std::min(std::max(t, 0.0f), 1.0f) * 5.0f;
-        const int k = std::min(int(t), 4);
+        t = std::min(std::max(t, 0.0f), 1.0f) * float(segments);
+        const int k = std::min(int(t), segments - 1);
         const float f = t - float(k);
         for (int c = 0; c < 3; ++c) {
-            const float v = kRamp[k][c] + f * (kRamp[k + 1][c] - kRamp[k][c]);
+            const float v = points[k][c] + f * (points[k + 1][c] - points[k][c]);
             image.rgb[3 * i + c] = static_cast<unsigned char>(std::lround(v * 255.0f));
         }
     }

@@ -9,18 +9,21 @@ namespace {
 
 const char* const kUsage =
     "usage:\n"
-    "  tetprobe build INPUT.(csv|json) -o STORE [--compact]\n"
-    "                                                csv: x,y,z[,27 sh] per line; json: {\"probes\": [[x,y,z],...],\n"
-    "                                                \"sh\": [[27 floats],...]}; --compact: the smallest blob\n"
+    "  tetprobe build PROBES.(csv|json) -o STORE [--compact] [--scene SCENE [--scale S] [--up AXIS]]\n"
+    "                                                probe files: docs/probe-file.md; --compact: the smallest blob;\n"
+    "                                                --scene: leak control (probe pairs a wall separates)\n"
     "  tetprobe info STORE [--json]\n"
     "  tetprobe query STORE x y z [--weights] [--json]\n"
-    "  tetprobe bake SCENE.json -o STORE [--rays N] [--bounces N] [--seed N] [--threads N]\n"
-    "  tetprobe plan SCENE.json [--rays N] [--bounces N] [--seed N] [--threads N] [--json]\n"
-    "  tetprobe place SCENE.json -o PROBES.csv [--mode whole|walkable] [--spacing S] [--margin M]\n"
+    "  tetprobe bake SCENE -o STORE|BAKED.csv [--probes PROBES.csv] [--rays N] [--bounces N] [--seed N] [--threads N]\n"
+    "  tetprobe plan SCENE [--probes PROBES.csv] [--rays N] [--bounces N] [--seed N] [--threads N] [--json]\n"
+    "  tetprobe place SCENE -o PROBES.csv [--mode whole|walkable] [--spacing S] [--margin M]\n"
     "                 [--target N] [--error E] [--rays N] [--seed N] [--threads N] [--curve CURVE.json]\n"
     "                 [--min-height H] [--max-height H]   probe positions proposed for a scene\n"
     "  tetprobe demo [--out DIR] [--scene FILE] [--rays N]\n"
-    "  tetprobe version\n";
+    "  tetprobe version\n"
+    "SCENE: a glTF 2.0 (.gltf, .glb), FBX, OBJ or JSON scene (docs/scene-format.md); every command that reads one\n"
+    "takes --scale S (world units per file unit; default the file's unit in metres) and --up +x|-x|+y|-y|+z|-z\n"
+    "(the file's up; default what the file says). Without --probes, bake and plan use the scene's own probes.\n";
 
 }  // namespace
 

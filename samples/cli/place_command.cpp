@@ -33,10 +33,10 @@ void place_scene_probes(tp_scene* scene, float spacing, float error_bound) {
 
 int command_place(const std::vector<std::string>& args) {
     const Arguments a = parse_arguments(
-        args, {"-o", "--mode", "--spacing", "--margin", "--target", "--error", "--rays", "--bounces", "--seed", "--threads",
-               "--curve", "--min-height", "--max-height"},
+        args, with_scene_options({"-o", "--mode", "--spacing", "--margin", "--target", "--error", "--rays", "--bounces",
+                                  "--seed", "--threads", "--curve", "--min-height", "--max-height"}),
         {});
-    if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("place takes SCENE.json and -o PROBES.csv");
+    if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("place takes SCENE and -o PROBES.csv");
     tp_placement_options options;
     check(tp_placement_options_init(&options), "tp_placement_options_init");
     const std::string mode = a.value("--mode", "whole");
@@ -54,9 +54,7 @@ int command_place(const std::vector<std::string>& args) {
     options.seed = uint64_t(parse_count(a.value("--seed", "0"), "--seed"));
     options.threads = uint32_t(parse_count(a.value("--threads", "0"), "--threads"));
 
-    tp_scene* raw = nullptr;
-    check(tp_scene_load_file(a.positional[0].c_str(), &raw), "loading the scene");
-    ScenePtr scene(raw);
+    ScenePtr scene = load_scene(a.positional[0], a);
     size_t bound = 0;
     check(tp_place_probes_bound(scene.get(), &options, &bound), "sizing the placement");
     std::vector<float> positions(3 * bound), curve(2 * bound + 2);
@@ -71,14 +69,9 @@ int command_place(const std::vector<std::string>& args) {
     bar.finish();
     check(status, "placing probes");
 
-    std::string csv;
-    char line[96];
-    for (size_t i = 0; i < count; ++i) {
-        std::snprintf(line, sizeof line, "%.9g,%.9g,%.9g\n", positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
-        csv += line;
-    }
+    positions.resize(3 * count);
     const std::string out = a.value("-o", "");
-    write_file_atomically(out, csv.data(), csv.size());
+    write_probe_file(out, positions, {});
     const float error = points ? curve[2 * (points - 1) + 1] : 0.0f;
     std::printf("placed %zu probes in %.2f s, estimated error %.4f (luminance irradiance at validation points, "
                 "relative to their mean); wrote %s\n",

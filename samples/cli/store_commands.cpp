@@ -10,17 +10,21 @@
 namespace cli {
 
 int command_build(const std::vector<std::string>& args) {
-    const Arguments a = parse_arguments(args, {"-o"}, {"--compact"});
+    const Arguments a = parse_arguments(args, with_scene_options({"-o", "--scene"}), {"--compact"});
     if (a.positional.size() != 1 || !a.has("-o")) throw UsageError("build takes INPUT and -o STORE");
+    if (!a.has("--scene") && (a.has("--scale") || a.has("--up"))) throw UsageError("--scale and --up go with --scene");
     const ProbeFile input = read_probe_file(a.positional[0]);
     if (input.positions.empty()) throw Failure(a.positional[0] + ": no probes");
-    StorePtr store = build_store(input.positions, input.sh, false, a.has("--compact") ? TP_BUILD_COMPACT : 0u);
+    // With a scene, leak control: cells whose probes cannot see each other weigh down the one behind the wall.
+    ScenePtr scene = a.has("--scene") ? load_scene(a.value("--scene", ""), a) : ScenePtr();
+    StorePtr store = build_store(input.positions, input.sh, false, a.has("--compact") ? TP_BUILD_COMPACT : 0u, scene.get());
     const std::string out = a.value("-o", "");
     check(tp_store_save_file(store.get(), out.c_str()), "saving the store");
     const tp_store_info info = store_info(store.get());
-    std::printf("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %" PRIu64 " bytes, %s layout%s\n",
+    std::printf("built %s: %u probes (%u merged), %u cells (%u inner, %u outer), %" PRIu64 " bytes, %s layout%s%s\n",
                 out.c_str(), info.probes, info.merged_probes, info.cells, info.inner_cells, info.outer_cells,
-                info.bytes, store_layout(info), input.sh.empty() ? " (no SH given: zeros)" : "");
+                info.bytes, store_layout(info), input.sh.empty() ? " (no SH given: zeros)" : "",
+                scene ? (", leak control: " + std::to_string(info.leak_edges) + " blocked probe pairs").c_str() : "");
     return 0;
 }
 

@@ -21,10 +21,11 @@ StorePtr load_store(const std::string& path) {
 }
 
 StorePtr build_store(const std::vector<float>& positions, const std::vector<float>& sh, bool show_progress,
-                     uint32_t flags) {
+                     uint32_t flags, const tp_scene* scene) {
     tp_build_options options;
     check(tp_build_options_init(&options), "tp_build_options_init");
     options.flags |= flags;
+    options.scene = scene;
     ProgressBar bar{"build"};
     if (show_progress) {
         options.progress = &ProgressBar::callback;

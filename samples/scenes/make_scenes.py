@@ -1,10 +1,14 @@
 #!/usr/bin/python3
 """Writes the sample scenes of samples/scenes/: a Cornell-style closed box, two rooms joined by a door
-with sunlight through a window, and a long flat outdoor strip (a race track) with a flat probe set.
-Run it from anywhere; it rewrites the .json and .obj files next to itself. Units are metres."""
+with sunlight through a window (also as a glTF 2.0 file, two_rooms.gltf), and a long flat outdoor strip
+(a race track) with a flat probe set. Run it from anywhere; it rewrites the .json, .obj and .gltf files
+next to itself. Units are metres, +y is up."""
 
+import base64
 import json
+import math
 import os
+import struct
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
@@ -58,6 +62,68 @@ def write_obj(name, vertices, indices, comment):
             f.write("f %d %d %d\n" % (t[0] + 1, t[1] + 1, t[2] + 1))
 
 
+def quaternion_from_minus_z(direction):
+    """The unit quaternion [x, y, z, w] turning glTF's light direction (0, 0, -1) onto direction."""
+    length = math.sqrt(sum(c * c for c in direction))
+    dx, dy, dz = (c / length for c in direction)
+    # The half-way rotation: (a x b, 1 + a . b) normalised, with a = (0, 0, -1) and b = the direction.
+    q = [dy, -dx, 0.0, 1.0 - dz]
+    norm = math.sqrt(sum(c * c for c in q))
+    return [c / norm for c in q]
+
+
+def write_gltf(name, meshes, lights, comment):
+    """A glTF 2.0 file with one embedded buffer: meshes [(name, vertices, triangles, albedo)] as
+    one-sided PBR materials (baseColorFactor = albedo), lights [(name, KHR_lights_punctual light, node
+    translation or None, direction or None)] placed by nodes."""
+    data = b""
+    accessors, views, gltf_meshes, materials, nodes = [], [], [], [], []
+    for mesh_name, vertices, triangles, albedo in meshes:
+        positions = struct.pack("<%df" % (3 * len(vertices)), *[c for v in vertices for c in v])
+        indices = struct.pack("<%dI" % (3 * len(triangles)), *[k for t in triangles for k in t])
+        for payload, kind, component, count in ((positions, "VEC3", 5126, len(vertices)),
+                                                (indices, "SCALAR", 5125, 3 * len(triangles))):
+            views.append({"buffer": 0, "byteOffset": len(data), "byteLength": len(payload)})
+            accessor = {"bufferView": len(views) - 1, "componentType": component, "count": count, "type": kind}
+            if kind == "VEC3":
+                accessor["min"] = [min(float(v[a]) for v in vertices) for a in range(3)]
+                accessor["max"] = [max(float(v[a]) for v in vertices) for a in range(3)]
+            accessors.append(accessor)
+            data += payload
+        materials.append({"name": mesh_name, "pbrMetallicRoughness": {"baseColorFactor": list(albedo) + [1.0],
+                                                                      "metallicFactor": 0.0}})
+        gltf_meshes.append({"name": mesh_name, "primitives": [{"attributes": {"POSITION": len(accessors) - 2},
+                                                                "indices": len(accessors) - 1,
+                                                                "material": len(materials) - 1}]})
+        nodes.append({"name": mesh_name, "mesh": len(gltf_meshes) - 1})
+    gltf_lights = []
+    for light_name, light, position, direction in lights:
+        gltf_lights.append(dict(light, name=light_name))
+        node = {"name": light_name, "extensions": {"KHR_lights_punctual": {"light": len(gltf_lights) - 1}}}
+        if position is not None:
+            node["translation"] = list(position)
+        if direction is not None:
+            node["rotation"] = quaternion_from_minus_z(direction)
+        nodes.append(node)
+    gltf = {
+        "asset": {"version": "2.0", "generator": "tetprobe samples/scenes/make_scenes.py: " + comment},
+        "extensionsUsed": ["KHR_lights_punctual"],
+        "extensions": {"KHR_lights_punctual": {"lights": gltf_lights}},
+        "scene": 0,
+        "scenes": [{"nodes": list(range(len(nodes)))}],
+        "nodes": nodes,
+        "meshes": gltf_meshes,
+        "materials": materials,
+        "accessors": accessors,
+        "bufferViews": views,
+        "buffers": [{"byteLength": len(data),
+                     "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode("ascii")}],
+    }
+    with open(os.path.join(HERE, name), "w") as f:
+        json.dump(gltf, f, indent=1)
+        f.write("\n")
+
+
 def grid(lo, hi, counts):
     points = []
     for k in range(counts[2]):
@@ -103,7 +169,7 @@ def cornell_box():
     box(v, i, (0.3, 0.0, 0.3), (0.9, 1.2, 0.9), inward=False)
     box(v, i, (1.1, 0.0, 1.1), (1.7, 0.6, 1.7), inward=False)
     write_obj("cornell_blocks.obj", v, i, "two blocks standing in the Cornell box")
-    meshes.append({"name": "blocks", "obj": "cornell_blocks.obj", "material": {"albedo": white}})
+    meshes.append({"name": "blocks", "file": "cornell_blocks.obj", "material": {"albedo": white}})
     probes = [p for p in grid((0.2, 0.2, 0.2), (1.8, 1.8, 1.8), (4, 4, 4))
               if not (0.3 <= p[0] <= 0.9 and p[1] <= 1.2 and 0.3 <= p[2] <= 0.9)
               and not (1.1 <= p[0] <= 1.7 and p[1] <= 0.6 and 1.1 <= p[2] <= 1.7)]
@@ -143,19 +209,27 @@ def two_rooms():
     probes = grid((0.5, 0.5, 0.5), (3.5, 2.5, 3.5), (4, 3, 4)) + grid((4.7, 0.5, 0.5), (7.7, 2.5, 3.5), (4, 3, 4))
     probes = [p for p in probes if not (5.6 <= p[0] <= 6.8 and p[1] <= 0.75 and 1.4 <= p[2] <= 2.6)]
     probes += [[4.1, 1.0, 2.0], [4.1, 1.8, 2.0]]  # in the doorway
+    sun = {"direction": [-0.8, -0.45, 0.1], "color": [1.0, 0.95, 0.85], "intensity": 6.0}
+    lamp = {"position": [2.0, 2.6, 2.0], "color": [1.0, 0.8, 0.6], "intensity": 8.0, "range": 6.0}
+    # The same rooms, table and lights as glTF 2.0 (no sky and no probes: glTF cannot say them); the
+    # sun's intensity is lux and the lamp's candela, which the library takes one to one.
+    write_gltf("two_rooms.gltf", [("rooms", v, i, (0.7, 0.68, 0.64)), ("table", t, ti, (0.45, 0.3, 0.18))],
+               [("sun", {"type": "directional", "color": sun["color"], "intensity": sun["intensity"]}, None,
+                 sun["direction"]),
+                ("lamp", {"type": "point", "color": lamp["color"], "intensity": lamp["intensity"],
+                          "range": lamp["range"]}, lamp["position"], None)],
+               "two rooms joined by a door, sun through an east window, a lamp in the west room")
     write_json("two_rooms.json", {
         "name": "two rooms",
         "description": "two rooms joined by a door; low sun through an east window; a lamp in the west room",
         "meshes": [
-            {"name": "rooms", "obj": "two_rooms.obj", "material": {"albedo": [0.7, 0.68, 0.64]}},
+            {"name": "rooms", "file": "two_rooms.obj", "material": {"albedo": [0.7, 0.68, 0.64]}},
             {"name": "table", "vertices": [list(p) for p in t], "indices": ti,
              "material": {"albedo": [0.45, 0.3, 0.18]}},
         ],
         "lights": [
-            {"name": "sun", "type": "directional", "direction": [-0.8, -0.45, 0.1], "color": [1.0, 0.95, 0.85],
-             "intensity": 6.0, "mode": "baked", "shadows": True},
-            {"name": "lamp", "type": "point", "position": [2.0, 2.6, 2.0], "color": [1.0, 0.8, 0.6],
-             "intensity": 8.0, "range": 6.0, "mode": "baked", "shadows": True},
+            dict({"name": "sun", "type": "directional"}, **sun, mode="baked", shadows=True),
+            dict({"name": "lamp", "type": "point"}, **lamp, mode="baked", shadows=True),
         ],
         "sky": {"color": [0.35, 0.5, 0.8]},
         "probes": probes,

@@ -327,6 +327,18 @@ void test_golden_store_files(void) {
 #else
     remove(unicode_name);
 #endif
+    /* The load cap (tp_store_load_options): one byte below the file's size refused, at it loaded. */
+    {
+        tp_store_load_options options;
+        EXPECT_OK(tp_store_load_options_init(&options));
+        options.max_file_bytes = size - 1;
+        EXPECT_STATUS(tp_store_load_file_ex(names[0], &options, &copy), TP_ERROR_IO);
+        CHECK(strstr(tp_last_error(), "above the load cap") != NULL);
+        options.max_file_bytes = size;
+        EXPECT_OK(tp_store_load_file_ex(names[0], &options, &copy));
+        tp_store_release(copy);
+        copy = NULL;
+    }
     remove(names[0]);
 
     EXPECT_STATUS(tp_store_save_file(store, "/nonexistent-dir/sub/store.tpb"), TP_ERROR_IO);
@@ -337,6 +349,7 @@ void test_golden_store_files(void) {
     EXPECT_STATUS(tp_store_load_file("/nonexistent-dir/store.tpb", &copy), TP_ERROR_IO);
     CHECK(strstr(tp_last_error(), "/nonexistent-dir/store.tpb") != NULL);
     EXPECT_STATUS(tp_store_load_file(".", &copy), TP_ERROR_IO);
+    CHECK(strstr(tp_last_error(), "not a regular file") != NULL);
     EXPECT_STATUS(tp_store_load_file(NULL, &copy), TP_ERROR_INVALID_ARGUMENT);
     EXPECT_STATUS(tp_store_load_file(names[0], NULL), TP_ERROR_INVALID_ARGUMENT);
     CHECK(copy == NULL);

@@ -164,6 +164,7 @@ int main(int argc, char** argv) {
     test_small_sets();
     test_scene_and_bake();
     test_scene_files();
+    test_scene_import();
     test_occlusion_and_leak_control();
     test_occlusion_bake_and_blend();
     test_leak_control_queries();
@@ -171,6 +172,8 @@ int main(int argc, char** argv) {
     test_placement_whole_and_walkable();
     test_placement_playable_seeds();
     test_inside_probes();
+    test_buffer_sizes_and_strides();
+    test_store_files();
 #endif
     printf("%d passed, %d failed\n", g_passed, g_failed);
     return g_failed == 0 ? 0 : 1;

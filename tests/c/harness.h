@@ -91,6 +91,7 @@ void test_batch_options(void);
 void test_outside_batch(void);
 void test_scene_and_bake(void);
 void test_scene_files(void);
+void test_scene_import(void);
 /* occlusion_leak.c */
 void test_occlusion_and_leak_control(void);
 /* placement.c */
@@ -100,5 +101,9 @@ void test_placement_playable_seeds(void);
 void test_inside_probes(void);
 void test_occlusion_bake_and_blend(void);
 void test_leak_control_queries(void);
+/* buffers.c: sizes, counts and strides that overflow are refused by name; odd strides answer as packed ones. */
+void test_buffer_sizes_and_strides(void);
+/* store_files.c (POSIX): load refuses non-regular and too large files; saves keep modes, follow links, clean up. */
+void test_store_files(void);
 
 #endif

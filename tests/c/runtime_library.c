@@ -38,6 +38,22 @@ void test_runtime_library_refuses_bake_time(void) {
     scene = (tp_scene*)(void*)&out;
     EXPECT_UNSUPPORTED(tp_scene_load_file, tp_scene_load_file("scene.json", &scene));
     CHECK(scene == NULL);
+    {
+        tp_scene_load_options load_options;
+        char notes[8] = "notes";
+        size_t notes_size = 7;
+        uint32_t up = 7;
+        EXPECT_OK(tp_scene_load_options_init(&load_options));
+        CHECK(load_options.struct_size == sizeof load_options && load_options.up == TP_UP_FILE);
+        scene = (tp_scene*)(void*)&out;
+        EXPECT_UNSUPPORTED(tp_scene_load_file_ex, tp_scene_load_file_ex("scene.gltf", &load_options, &scene));
+        CHECK(scene == NULL);
+        EXPECT_UNSUPPORTED(tp_scene_notes, tp_scene_notes(NULL, notes, sizeof notes, &notes_size));
+        CHECK(notes[0] == '\0' && notes_size == 0);
+        EXPECT_UNSUPPORTED(tp_scene_up, tp_scene_up(NULL, &up));
+        CHECK(up == TP_UP_FILE);
+        EXPECT_UNSUPPORTED(tp_scene_set_up, tp_scene_set_up(NULL, TP_UP_POS_Z));
+    }
     EXPECT_OK(tp_scene_release(NULL));
     /* No scene can exist here, so every function taking one refuses whatever it is given. */
     EXPECT_UNSUPPORTED(tp_scene_add_mesh, tp_scene_add_mesh(NULL, positions, 4, indices, 1, &material, 1, NULL, &id));

@@ -202,3 +202,111 @@ void test_scene_files(void) {
         }
     }
 }
+
+/* Scene files through Assimp: load options, the scene's up, the import's notes, bad files. */
+void test_scene_import(void) {
+    tp_scene* scene = NULL;
+    tp_scene_load_options options;
+    char path[1024];
+    char notes[512];
+    size_t size = 0;
+    uint32_t up = 0;
+    FILE* f;
+
+    EXPECT_STATUS(tp_scene_load_options_init(NULL), TP_ERROR_INVALID_ARGUMENT);
+    EXPECT_OK(tp_scene_load_options_init(&options));
+    CHECK(options.struct_size == sizeof options && options.up == TP_UP_FILE && options.scale == 0.0f);
+
+    /* The sample glTF: y-up metres by default, no notes; the options override the up and the unit. */
+    sprintf(path, "%.900s/samples/scenes/two_rooms.gltf", g_repo_root);
+    EXPECT_OK(tp_scene_load_file_ex(path, NULL, &scene));
+    if (scene) {
+        const float* probes = NULL;
+        size_t count = 99;
+        EXPECT_OK(tp_scene_up(scene, &up));
+        CHECK(up == TP_UP_POS_Y);
+        EXPECT_OK(tp_scene_notes(scene, NULL, 0, &size));
+        CHECK(size == 1);
+        EXPECT_OK(tp_scene_probes(scene, &probes, &count));
+        CHECK(count == 0); /* glTF has no probes */
+        EXPECT_STATUS(tp_scene_up(scene, NULL), TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_OK(tp_scene_set_up(scene, TP_UP_NEG_Z));
+        EXPECT_OK(tp_scene_up(scene, &up));
+        CHECK(up == TP_UP_NEG_Z);
+        EXPECT_STATUS(tp_scene_set_up(scene, TP_UP_FILE), TP_ERROR_INVALID_ARGUMENT);
+        EXPECT_STATUS(tp_scene_set_up(scene, 7u), TP_ERROR_INVALID_ARGUMENT);
+        tp_scene_release(scene);
+        scene = NULL;
+    }
+    options.up = TP_UP_POS_Z;
+    options.scale = 2.0f;
+    EXPECT_OK(tp_scene_load_file_ex(path, &options, &scene));
+    if (scene) {
+        EXPECT_OK(tp_scene_up(scene, &up));
+        CHECK(up == TP_UP_POS_Z);
+        tp_scene_release(scene);
+        scene = NULL;
+    }
+    options.scale = -1.0f;
+    EXPECT_STATUS(tp_scene_load_file_ex(path, &options, &scene), TP_ERROR_INVALID_ARGUMENT);
+    tp_scene_load_options_init(&options);
+    options.up = 9u;
+    EXPECT_STATUS(tp_scene_load_file_ex(path, &options, &scene), TP_ERROR_INVALID_ARGUMENT);
+    options.struct_size = 0;
+    EXPECT_STATUS(tp_scene_load_file_ex(path, &options, &scene), TP_ERROR_INVALID_ARGUMENT);
+    EXPECT_STATUS(tp_scene_load_file_ex(NULL, NULL, &scene), TP_ERROR_INVALID_ARGUMENT);
+    CHECK(scene == NULL);
+
+    /* An OBJ without a material takes the default one, and the notes say so; the text comes whole or
+       not at all (BUFFER_TOO_SMALL with the size it needs). */
+    f = fopen("harness_bare.obj", "w");
+    if (f) {
+        fputs("v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n", f);
+        fclose(f);
+        EXPECT_OK(tp_scene_load_file("harness_bare.obj", &scene));
+        if (scene) {
+            size = 0;
+            EXPECT_OK(tp_scene_notes(scene, NULL, 0, &size));
+            CHECK(size > 10 && size < sizeof notes);
+            notes[0] = 'x';
+            EXPECT_STATUS(tp_scene_notes(scene, notes, 4, &size), TP_ERROR_BUFFER_TOO_SMALL);
+            CHECK(notes[0] == '\0');
+            EXPECT_OK(tp_scene_notes(scene, notes, sizeof notes, NULL));
+            CHECK(strlen(notes) + 1 == size && strstr(notes, "harness_bare.obj") != NULL && strstr(notes, "default") != NULL);
+            CHECK(notes[strlen(notes) - 1] == '\n');
+            EXPECT_STATUS(tp_scene_notes(NULL, notes, sizeof notes, &size), TP_ERROR_INVALID_ARGUMENT);
+            tp_scene_release(scene);
+            scene = NULL;
+        }
+        remove("harness_bare.obj");
+    }
+    /* A file the OBJ refers to that is missing: TP_ERROR_SCENE naming both, no scene. */
+    f = fopen("harness_missing_mtl.obj", "w");
+    if (f) {
+        fputs("mtllib harness_nowhere.mtl\nv 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n", f);
+        fclose(f);
+        EXPECT_STATUS(tp_scene_load_file("harness_missing_mtl.obj", &scene), TP_ERROR_SCENE);
+        CHECK(strstr(tp_last_error(), "harness_missing_mtl.obj") != NULL && strstr(tp_last_error(), "harness_nowhere.mtl") != NULL);
+        CHECK(scene == NULL);
+        remove("harness_missing_mtl.obj");
+    }
+    /* A truncated .glb and a light of an unknown type. */
+    f = fopen("harness_truncated.glb", "wb");
+    if (f) {
+        fwrite("glTF\x02\x00\x00\x00\x00\x10\x00\x00", 1, 12, f); /* declares 4096 bytes, holds 12 */
+        fclose(f);
+        EXPECT_STATUS(tp_scene_load_file("harness_truncated.glb", &scene), TP_ERROR_SCENE);
+        CHECK(strstr(tp_last_error(), "truncated") != NULL);
+        remove("harness_truncated.glb");
+    }
+    f = fopen("harness_laser.gltf", "w");
+    if (f) {
+        fputs("{\"asset\": {\"version\": \"2.0\"}, \"extensions\": {\"KHR_lights_punctual\": {\"lights\": "
+              "[{\"type\": \"laser\", \"intensity\": 1}]}}}", f);
+        fclose(f);
+        EXPECT_STATUS(tp_scene_load_file("harness_laser.gltf", &scene), TP_ERROR_SCENE);
+        CHECK(strstr(tp_last_error(), "laser") != NULL);
+        remove("harness_laser.gltf");
+    }
+    CHECK(scene == NULL);
+}

@@ -221,6 +221,15 @@ static class HeaderCheck
         }
         foreach (string problem in problems) Console.WriteLine("  header: " + problem);
         Tests.Check(problems.Count == 0, "every DllImport matches capi/tetprobe.h (" + problems.Count + " mismatches)");
+        // And the other way: every function of the header is declared (the binding is complete).
+        var declared = new HashSet<string>(imports.Select(m =>
+        {
+            var import = (DllImportAttribute)m.GetCustomAttributes(typeof(DllImportAttribute), false).FirstOrDefault();
+            return import != null && !string.IsNullOrEmpty(import.EntryPoint) ? import.EntryPoint : m.Name;
+        }));
+        var missing = functions.Keys.Where(f => !declared.Contains(f)).OrderBy(f => f).ToList();
+        Tests.Check(missing.Count == 0, "every function of capi/tetprobe.h has a DllImport" +
+                    (missing.Count > 0 ? " (missing: " + string.Join(", ", missing) + ")" : " (" + functions.Count + ")"));
         Tests.Check(CheckedStructs.Count >= 8, "struct layouts checked: " + string.Join(", ", CheckedStructs.OrderBy(s => s)));
 
         // Constants and enums, by name without underscores: NativeMethods.BuildCompact = TP_BUILD_COMPACT, etc.
@@ -243,6 +252,7 @@ static class HeaderCheck
         foreach (LightMode mode in Enum.GetValues(typeof(LightMode))) expect("TP_LIGHT_MODE_" + mode, (long)mode);
         foreach (ShOrder order in Enum.GetValues(typeof(ShOrder))) expect("TP_SH_ORDER_" + order, (long)order);
         foreach (ShWindow window in Enum.GetValues(typeof(ShWindow))) expect("TP_SH_WINDOW_" + window, (long)window);
+        foreach (UpAxis up in Enum.GetValues(typeof(UpAxis))) expect("TP_UP_" + up, (long)up);
         foreach (string problem in constantProblems) Console.WriteLine("  header: " + problem);
         Tests.Check(constantProblems.Count == 0, "constants and enums match the header's values");
 

@@ -146,6 +146,45 @@ static class SceneTests
         Tests.Throws<TetProbeException>(() => Scene.Load(Path.Combine(scenes, "no_such_scené.json")), "missing scene file",
                                         e => e.Message.Contains("no_such_scené.json"));
 
+        // Scene files through Assimp: the glTF two rooms, its up and unit as options, the notes, bad files.
+        using (Scene rooms = Scene.Load(Path.Combine(scenes, "two_rooms.gltf")))
+        {
+            Tests.Check(rooms.Up == UpAxis.PosY && rooms.Notes.Length == 0 && rooms.Probes.Length == 0,
+                        "two_rooms.gltf: y-up, no notes, no probes (" + rooms.Up + ", " + rooms.Notes.Length + " notes)");
+            EffectsPlan plan = Baker.Plan(rooms, new[] { new Vector3(2, 1, 2) });
+            Tests.Check(plan.Meshes == 2 && plan.Lights == 2, "two_rooms.gltf: the rooms and the table, the sun and the lamp (" + plan + ")");
+            rooms.Up = UpAxis.NegZ;
+            Tests.Check(rooms.Up == UpAxis.NegZ, "Up can be set");
+            Tests.Throws<TetProbeException>(() => rooms.Up = UpAxis.File, "Up = File is refused", e => e.Status == TetProbeStatus.InvalidArgument);
+        }
+        var zUp = new SceneLoadOptions { Up = UpAxis.PosZ, Scale = 2 };
+        Tests.Check(new SceneLoadOptions().Scale == 0 && new SceneLoadOptions().Up == UpAxis.File, "SceneLoadOptions' defaults");
+        using (Scene rooms = Scene.Load(Path.Combine(scenes, "two_rooms.gltf"), zUp))
+            Tests.Check(rooms.Up == UpAxis.PosZ, "the options' up wins over the file's");
+        Tests.Throws<ArgumentOutOfRangeException>(() => Scene.Load(Path.Combine(scenes, "two_rooms.gltf"), new SceneLoadOptions { Scale = -1 }),
+                                                  "a negative scale");
+        string scratch = Path.Combine(Path.GetTempPath(), "tetprobe_csharp_" + System.Diagnostics.Process.GetCurrentProcess().Id);
+        Directory.CreateDirectory(scratch);
+        try
+        {
+            string bare = Path.Combine(scratch, "bare.obj");
+            File.WriteAllText(bare, "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 3 2\n");
+            using (Scene loaded = Scene.Load(bare))
+                Tests.Check(loaded.Notes.Length == 1 && loaded.Notes[0].Contains("bare.obj") && loaded.Notes[0].Contains("default"),
+                            "an OBJ without materials notes the default material (" + string.Join(" | ", loaded.Notes) + ")");
+            string laser = Path.Combine(scratch, "laser.gltf");
+            File.WriteAllText(laser, "{\"asset\": {\"version\": \"2.0\"}, \"extensions\": {\"KHR_lights_punctual\": " +
+                                     "{\"lights\": [{\"type\": \"laser\"}]}}}");
+            Tests.Throws<TetProbeException>(() => Scene.Load(laser), "a glTF light of an unknown type",
+                                            e => e.Status == TetProbeStatus.Scene && e.Message.Contains("laser.gltf") && e.Message.Contains("\"laser\""));
+        }
+        finally
+        {
+            Directory.Delete(scratch, true);
+        }
+        using (var built = new Scene())
+            Tests.Check(built.Notes.Length == 0 && built.Up == UpAxis.PosY, "a scene built in code: no notes, +y up");
+
         var disposed = new Scene();
         disposed.Dispose();
         disposed.Dispose();

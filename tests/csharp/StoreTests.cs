@@ -106,6 +106,15 @@ static class StoreTests
             Tests.Throws<TetProbeException>(() => ProbeStore.Load(Path.Combine(scratch, "störe_missing_é.tpb")),
                                             "the message names a non-ASCII path intact",
                                             e => e.Status == TetProbeStatus.IO && e.Message.Contains("störe_missing_é.tpb"));
+
+            // The load cap, and only regular files.
+            ulong size = (ulong)new FileInfo(path).Length;
+            Tests.Throws<TetProbeException>(() => ProbeStore.Load(path, size - 1), "a file above the load cap is refused",
+                                            e => e.Status == TetProbeStatus.IO && e.Message.Contains("above the load cap"));
+            using (ProbeStore again = ProbeStore.Load(path, size))
+                Tests.Check((ulong)again.Info.Bytes == size, "a file at the load cap loads");
+            Tests.Throws<TetProbeException>(() => ProbeStore.Load(scratch), "a directory is refused",
+                                            e => e.Status == TetProbeStatus.IO && e.Message.Contains("not a regular file"));
         }
         DisposedDuringCopy(positions, sh);
     }

@@ -102,6 +102,13 @@ static class Tests
         Check(Math.Abs(sun.EvaluateIrradiance(new Vector3(0, 0, 1)).x - 1.0625) < 1e-4, "directional light, L2 lobe");
         Throws<TetProbeException>(() => sh.EvaluateRadiance(new Vector3(float.NaN, 0, 1)), "NaN direction",
                                   e => e.Status == TetProbeStatus.InvalidArgument);
+        foreach (TetProbeStatus status in Enum.GetValues(typeof(TetProbeStatus)))
+        {
+            // TP_OK, TP_ERROR_INVALID_ARGUMENT for InvalidArgument, ...: the same letters once underscores are dropped.
+            string key = status == TetProbeStatus.Ok ? "TPOK" : "TPERROR" + status.ToString().ToUpperInvariant();
+            string name = TetProbeException.StatusName(status);
+            Check(name.StartsWith("TP_") && name.Replace("_", "") == key, "status name of " + status + " (" + name + ")");
+        }
     }
 
     /// <summary>The SH evaluation options: L2 without a window is the plain evaluation, L1 and Sloan's window are the
@@ -505,7 +512,7 @@ static class Tests
         foreach (Action<string> test in new Action<string>[] {
                      s => Layout(), s => ShHelpers(), s => ShOptions(), s => Queries(), s => LayoutsAndBatchOptions(), RoundTrips,
                      s => Volumes(), s => HeaderCheck.Run(header), s => SceneTests.Run(scenes), StoreTests.Run,
-                     s => VersionTests.Run() })
+                     s => PlacementTests.Run(), s => VersionTests.Run() })
         {
             try
             {

@@ -11,6 +11,7 @@ mkdir -p "$scratch"
 ln -sf "$library" "$scratch/libtetprobe.so"
 # Debian's mcs (Mono 6) has Span<T> in its corlib: the span overloads are compiled and tested.
 mcs -nologo -warnaserror -define:TETPROBE_SPAN -target:exe -out:"$scratch/TetProbeTests.exe" "$binding"/*.cs \
-    "$here/Tests.cs" "$here/HeaderCheck.cs" "$here/SceneTests.cs" "$here/StoreTests.cs" "$here/VersionTests.cs"
+    "$here/Tests.cs" "$here/HeaderCheck.cs" "$here/SceneTests.cs" "$here/StoreTests.cs" "$here/VersionTests.cs" \
+    "$here/PlacementTests.cs"
 LD_LIBRARY_PATH="$scratch${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" mono --debug "$scratch/TetProbeTests.exe" "$scratch/work" \
     "$here/../../capi/tetprobe.h" "$here/../../samples/scenes"

@@ -4,7 +4,10 @@
 // picks a mode: bit 0 repairs the checksum first, so mutations reach the deeper checks (counts,
 // indices, floats, orientations, neighbours, leak lists); bit 1 flips the layout flag (kFlagCompact)
 // before that, so one seed of either layout reaches the other's loader; bits 2 and 3 flip the
-// occlusion and leak-control flags the same way.
+// occlusion and leak-control flags the same way. Every query must end within its cap of examined
+// cells (core/locate.cpp): a walk of cells + 64 steps past its start, a search of 3 x outer cells +
+// 4096; one that gives up says so (invalid_blob). The seeds include forged blobs with valid checksums
+// (tests/fuzz/seeds/fuzz_load/forged_*, written by tetprobe_tests "[.write-forged-seeds]").
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_format.h"
@@ -50,6 +53,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
         float p[3];
         for (int k = 0; k < 3; ++k) p[k] = float(h.origin[k] + lo[k] + f[k] * (hi[k] - lo[k]));
         tetprobe::Location loc = store->locate(p, hint);
+        if (uint64_t(loc.steps) > uint64_t(h.cell_count) + 65 ||
+            loc.searched > 3 * uint64_t(h.cell_count - h.inner_cell_count) + 4096)
+            __builtin_trap();
+        if (loc.status != tetprobe::Status::ok && loc.status != tetprobe::Status::outside &&
+            loc.status != tetprobe::Status::invalid_blob)
+            __builtin_trap();
         if (loc.status == tetprobe::Status::ok) {
             for (int k = 0; k < 4; ++k)
                 if (!std::isfinite(loc.weights[k]) || loc.probes[k] >= h.probe_count) __builtin_trap();

@@ -5,9 +5,9 @@
 #   run.sh BUILD SECONDS `make fuzz`: a random seed for SECONDS per target, growing the kept corpus.
 set -uo pipefail
 build="$1"; mode="${2:-short}"; root="$(cd "$(dirname "$0")/../.." && pwd)"
-declare -A short_runs=([fuzz_load]=1000000 [fuzz_build]=15000)
+declare -A short_runs=([fuzz_load]=1000000 [fuzz_build]=8000 [fuzz_bsp]=300000)
 passed=0; failed=0
-for target in fuzz_load fuzz_build; do
+for target in fuzz_load fuzz_build fuzz_bsp; do
   if [ "$mode" = short ]; then
     corpus="$build/corpus-$target-short"; rm -rf "$corpus"
     # No comparison-guided mutations: they feed on compared values, pointers among them, which

@@ -2,8 +2,9 @@
 
 The fixtures in bench_fixtures/ follow the schemas of tetprobe_bench's parts: methods.json and
 precision.json as documented in samples/bench/bench_methods.cpp (hand-made values), locate.json,
-scipy_locate.json, bake.json and probes.json from a `--quick` run, leak.json from `tetprobe_bench leak` and
-placement.json from samples/bench/placement_vs_uniform.py.
+scipy_locate.json, bake.json and probes.json from a `--quick` run, leak.json from `tetprobe_bench leak`,
+placement.json from samples/bench/placement_vs_uniform.py, and levels.json from `tetprobe_bench levels --quick`
+on one level (renamed fixture_arena; the brick grids its smallest budgets could not hold left out).
 """
 import json
 import os
@@ -19,10 +20,10 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "samples", "bench"))
 import report  # noqa: E402
 import scipy_locate  # noqa: E402
 
-SECTIONS = ["## 1. Interpolation methods", "## 2. Precision, layout and SH order", "## 3. Locate", "## 4. Bake",
+SECTIONS = ["## Real levels: what accuracy costs against the probe volumes engines ship", "## 1. Interpolation methods", "## 2. Precision, layout and SH order", "## 3. Locate", "## 4. Bake",
             "## 5. Probe count", "## 6. Leak control", "## 7. Probe placement", "## 8. Headline ratios",
             "## Store benchmark"]
-PLOTS = ["methods_error_vs_time_fixture_rooms.png", "slices_fixture_rooms.png", "popping_fixture_rooms.png",
+PLOTS = ["levels_error_vs_bytes_fixture_arena.png", "methods_error_vs_time_fixture_rooms.png", "slices_fixture_rooms.png", "popping_fixture_rooms.png",
          "bake_error_vs_time.png", "probe_convergence.png", "leak_path.png", "placement_error.png"]
 
 
@@ -73,6 +74,9 @@ def test_every_section_and_plot_of_a_complete_run(tmp_path):
                  "leak_path.png", "placement_error.png"):
         assert "(docs/bench/%s)" % name in digest
     assert "| grid error / ours at equal memory (RMS), fixture rooms | 1.4x |" in digest
+    assert "(docs/bench/levels_error_vs_bytes_fixture_arena.png)" in digest
+    # The digest leads with the real levels' summary.
+    assert digest.index("**Real levels**") < digest.index("**Headline ratios**")
 
 
 def test_headline_ratios_come_from_the_parts(tmp_path, no_plots):
@@ -199,3 +203,67 @@ def test_scipy_locate_times_the_benchmark_points(tmp_path):
 def test_scipy_locate_without_the_locate_part(tmp_path):
     result = scipy_locate.measure(str(tmp_path))
     assert "no locate.json" in result["not_run"]
+
+
+def _levels(directory):
+    return json.loads((directory / "levels.json").read_text())
+
+
+def test_real_levels_summary_is_the_best_grid_peer_over_tetprobe_at_equal_memory(tmp_path, no_plots):
+    directory = _results(tmp_path)
+    text = _run(directory)
+    assert text.index(SECTIONS[0]) < text.index("## 1. Interpolation methods")
+    section = _section(text, SECTIONS[0])
+    level = _levels(directory)["levels"][0]
+    results = level["results"]
+    checked = 0
+    for placed in [r for r in results if r["method"] == "tetprobe_placed"]:
+        budget_of = "tetprobe placed %s %s" % (placed["layout"], placed["target"])
+        peers = [r for r in results if r.get("budget_of") == budget_of]
+        assert {p["method"] for p in peers} >= {"grid_half", "grid_apv8"}
+        for p in peers:  # every peer at most the bytes of the store it is compared with
+            assert p["bytes"] <= placed["bytes"] == p["budget_bytes"]
+        best = min(peers, key=lambda r: r["rms_error"])
+        row = "| %s | %s | %s | %s | %s |" % (placed["layout"], placed["target"], report.num(placed["bytes"]),
+                                              report.num(placed["rms_error"]), report.num(placed["p95_error"]))
+        assert row in section
+        ratio = report.num(best["rms_error"] / placed["rms_error"]) + "x"
+        assert [line for line in section.splitlines() if line.startswith(row)][0].split(" | ")[8] == ratio
+        checked += 1
+    assert checked == 4
+    # Every method's row, the level's facts and the import and metric definitions are there.
+    for label in {r["label"] for r in results}:
+        assert "| %s |" % label in section
+    assert "reference noise %s RMS" % report.num(level["reference_noise"]["rms"]) in section
+    assert "metric (every part and method): Irradiance: Rec. 709 luminance" in section
+    ratios = _section(text, "## 8. Headline ratios")
+    assert "best grid peer / tetprobe placed at equal memory (RMS), fixture_arena, 100 probes, compact" in ratios
+    digest = (tmp_path / "readme_section.md").read_text()
+    assert "| fixture_arena (%s triangles, %s light entities + sun) | 100 |" % (
+        report.num(level["triangles"]), level["light_entities"]) in digest
+
+
+def test_a_real_level_or_peer_that_did_not_run_is_said(tmp_path, no_plots):
+    directory = _results(tmp_path)
+    doc = _levels(directory)
+    doc["levels"][0]["skipped"] = [{"method": "bricks_apv8", "budget_bytes": 6848,
+                                    "why": "the smallest brick grid (12256 bytes) exceeds the budget"}]
+    doc["levels"].append({"name": "dark_arena", "not_run": "the reference irradiance is not positive"})
+    (directory / "levels.json").write_text(json.dumps(doc))
+    text = _run(directory)
+    summary = text[:text.index(SECTIONS[0])]
+    assert "- real level dark_arena: the reference irradiance is not positive" in summary
+    assert "- bricks_apv8 on fixture_arena at 6,848: the smallest brick grid (12256 bytes) exceeds the budget" in summary
+    section = _section(text, SECTIONS[0])
+    assert "### dark_arena" in section and "**Not run:** the reference irradiance is not positive" in section
+    assert "| dark_arena | not run: the reference irradiance is not positive |" in section
+
+
+def test_the_real_level_part_missing_or_not_set_up_is_said(tmp_path, no_plots):
+    directory = _results(tmp_path, leave_out=("levels.json",))
+    text = _run(directory)
+    assert "**Not run:** levels.json is missing" in _section(text, SECTIONS[0])
+    (directory / "levels.json").write_text(json.dumps({"not_run": "setup_levels.sh failed: no network"}))
+    text = _run(directory)
+    assert "**Not run:** setup_levels.sh failed: no network" in _section(text, SECTIONS[0])
+    assert "- tetprobe_bench levels (samples/bench/run_levels.sh): setup_levels.sh failed" in text

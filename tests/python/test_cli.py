@@ -1,6 +1,7 @@
 """The `tetprobe` command (path in $TETPROBE_CLI): build from CSV and JSON, info, query, errors."""
 import json
 import os
+import re
 import subprocess
 
 import numpy as np
@@ -108,8 +109,35 @@ def test_demo_writes_its_pictures_and_stores(tmp_path):
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
     assert Store.load(str(out / "analytic.tpb")).info()["probes"] > 100
     assert not [p for p in out.iterdir() if ".tmp" in p.name]
-    for name in ("analytic_irradiance.png", "two_rooms_irradiance.png"):
+    for name in ("analytic_irradiance.png", "two_rooms_irradiance.png", "two_rooms_leak_fix.png"):
         _assert_framed_with_colour_bar(out / name)
+    _assert_leak_picture_shows_the_wall_and_the_difference(out / "two_rooms_leak_fix.png", result.stdout)
+
+
+def _assert_leak_picture_shows_the_wall_and_the_difference(path, stdout):
+    """Three panels (without, with, their difference), the wall in grey in each, and a diverging colour bar for the
+    difference (dark red at the top, dark blue at the bottom) whose panel holds both signs."""
+    image = pytest.importorskip("matplotlib.image").imread(str(path))[:, :, :3]
+    grey = np.abs(image - 150 / 255).max(axis=2) < 0.01
+    columns = np.nonzero(grey.any(axis=0))[0]
+    # The wall (x 4.0 to 4.2 m) appears once per panel: three runs of grey columns.
+    runs = np.split(columns, np.nonzero(np.diff(columns) > 40)[0] + 1)
+    walls = [r for r in runs if grey[:, r].sum() > 300]
+    assert len(walls) == 3, [(r[0], r[-1], grey[:, r].sum()) for r in runs]
+    red, blue = np.array([0.40, 0.0, 0.12]), np.array([0.02, 0.19, 0.38])
+    near = lambda colour: np.abs(image - colour).max(axis=2) < 0.02  # noqa: E731
+    bar_columns = np.nonzero(near(red).any(axis=0) & near(blue).any(axis=0))[0]
+    assert len(bar_columns) >= 10, "no diverging colour bar"
+    column = bar_columns[0]
+    rows = np.nonzero(near(red)[:, column] | near(blue)[:, column])[0]
+    assert near(red)[rows[0], column] and near(blue)[rows[-1], column]  # red on top: without - with > 0
+    # Beside the wall in the difference panel: light that leaked east is gone (red), the west side brightens (blue).
+    beside = image[:, walls[2][0] - 40:walls[2][-1] + 40]
+    reddish = (beside[:, :, 0] - beside[:, :, 2] > 0.25).sum()
+    bluish = (beside[:, :, 2] - beside[:, :, 0] > 0.25).sum()
+    assert reddish > 100 and bluish > 100, (reddish, bluish)
+    change = re.search(r"the largest change, (-?[0-9.]+) of irradiance ([0-9.]+)", stdout)
+    assert change and abs(float(change.group(1))) > 0.1 * float(change.group(2)), stdout
 
 
 def _assert_framed_with_colour_bar(path):

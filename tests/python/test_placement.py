@@ -195,8 +195,11 @@ def test_inside_probes_found_reported_dropped_and_pushed():
     # Probe 1 is 0.5 deep, probe 2 0.1 deep: each leaves through the nearest face.
     moved = np.linalg.norm(pushed - positions, axis=1)
     assert moved[1] == pytest.approx(0.75, abs=0.01) and moved[2] == pytest.approx(0.35, abs=0.01)
-    with pytest.raises(Error):
+    with pytest.raises(ValueError, match="mode must be one of 'drop', 'push'"):
         tetprobe.fix_inside_probes(scene, positions, "teleport")
+    with pytest.raises(Error) as error:
+        tetprobe.fix_inside_probes(scene, positions, "push", margin=-1)
+    assert error.value.status == Status.INVALID_ARGUMENT and "margin" in str(error.value)
     plan = tetprobe.bake_plan(scene, positions[[0, 3]], rays=16)
     assert plan["inside_probes"] == 0 and "inside" not in plan["text"]
 

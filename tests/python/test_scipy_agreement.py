@@ -13,7 +13,7 @@ cloud, at thousands of random points strictly inside the hull:
 And a query exactly at any probe returns weight 1.0 there and 0.0 everywhere else, also on a rotated
 lattice (many cospherical probes) at the same offset.
 
-API used (DESIGN.md): Store.build(positions[N, 3]) and
+API used (the package's help, help(tetprobe.Store)): Store.build(positions[N, 3]) and
 store.weights(points[M, 3], hints=None) -> (indices[M, 4] input indices, weights[M, 4], hints[M]).
 """
 import numpy as np

@@ -230,6 +230,44 @@ def test_save_load_round_trip(tmp_path):
     assert Store.load(path).info() == store.info()
 
 
+def test_files_only_regular_ones_within_the_cap_load(tmp_path):
+    store = Store.build(*random_set(40, 83))
+    blob = store.to_bytes()
+    path = tmp_path / "probes.tpb"
+    store.save(path)
+    for source, words in (("/dev/zero", "character device"), (tmp_path, "a directory")):
+        with pytest.raises(Error) as raised:
+            Store.load(source)
+        assert raised.value.status == Status.IO and words in raised.value.message
+    with pytest.raises(Error) as raised:
+        Store.load(path, max_file_bytes=len(blob) - 1)
+    assert raised.value.status == Status.IO and "above the load cap of %d bytes" % (len(blob) - 1) in raised.value.message
+    assert Store.load(path, max_file_bytes=len(blob)).to_bytes() == blob
+
+
+def test_save_keeps_the_mode_writes_through_links_and_cleans_stale_temporaries(tmp_path):
+    import os
+    import subprocess
+    store = Store.build(*random_set(40, 84))
+    blob = store.to_bytes()
+    target = tmp_path / "target.tpb"
+    target.write_bytes(b"old")
+    os.chmod(target, 0o600)
+    link = tmp_path / "link.tpb"
+    link.symlink_to("target.tpb")
+    # A killed save's temporary file (its process is gone) and a live one's (this process's parent).
+    gone = subprocess.Popen(["true"])
+    gone.wait()
+    stale = tmp_path / ("target.tpb.tetprobe-tmp-%d-0123456789abcdef" % gone.pid)
+    live = tmp_path / ("target.tpb.tetprobe-tmp-%d-0123456789abcdef" % os.getppid())
+    stale.write_bytes(b"partial")
+    live.write_bytes(b"being written")
+    store.save(link)
+    assert link.is_symlink() and target.read_bytes() == blob
+    assert (target.stat().st_mode & 0o7777) == 0o600
+    assert not stale.exists() and live.exists()
+
+
 def test_bad_input_raises_clear_errors(tmp_path):
     positions, sh = random_set(20, 91)
     with pytest.raises(Error) as raised:

@@ -32,9 +32,9 @@ void add_cube(Scene& scene, float x, float y, float z, const Material& m) {
     scene.add_mesh(v.data(), 8, indices, 12, {m}, nullptr);
 }
 
-tp_light point_light(float x, float y, float z, float range, uint32_t mode = TP_LIGHT_MODE_BAKED) {
-    tp_light l = default_c_light();
-    l.type = TP_LIGHT_POINT;
+LightDescription point_light(float x, float y, float z, float range, LightMode mode = LightMode::baked) {
+    LightDescription l;
+    l.type = LightType::point;
     l.position[0] = x, l.position[1] = y, l.position[2] = z;
     l.range = range;
     l.mode = mode;
@@ -53,7 +53,7 @@ TEST_CASE("effects plan: lights in and out of range, realtime, sky, emission, bo
     scene.add_light(point_light(1, 5, 1, 10));                       // reaches the probes
     scene.add_light(point_light(40, 0, 0, 5));                       // reaches no probe and no mesh
     scene.add_light(point_light(14, 0, 0, 5));                       // reaches no probe but a mesh
-    scene.add_light(point_light(0, 3, 0, INFINITY, TP_LIGHT_MODE_REALTIME));
+    scene.add_light(point_light(0, 3, 0, INFINITY, LightMode::realtime));
 
     EffectsPlan plan = derive_effects_plan(scene, kProbes, 3, true);
     CHECK(plan.lights == 4);
@@ -90,7 +90,7 @@ TEST_CASE("effects plan: bounces only when something can bounce", "[plan]") {
     // Reflective geometry but no light at all: nothing to bounce.
     Scene dark;
     add_cube(dark, 0, -2, 0, grey(0.8f));
-    tp_light far = point_light(100, 0, 0, 1);
+    LightDescription far = point_light(100, 0, 0, 1);
     dark.add_light(far);
     plan = derive_effects_plan(dark, kProbes, 2, true);
     CHECK(plan.bounces == 0);
@@ -113,12 +113,12 @@ TEST_CASE("effects plan: shadow casters are the meshes in the shadow caster volu
     add_cube(scene, 0.5f, 12, 0.5f, grey());  // behind the light
     add_cube(scene, 0.2f, 0.2f, 0.2f, grey()); // among the probes
     scene.add_light(point_light(1, 8, 1, INFINITY));
-    tp_light sun = default_c_light();
-    sun.type = TP_LIGHT_DIRECTIONAL;
+    LightDescription sun;
+    sun.type = LightType::directional;
     sun.direction[0] = 0, sun.direction[1] = -1, sun.direction[2] = 0;  // straight down
     scene.add_light(sun);
-    tp_light unshadowed = point_light(1, 8, 1, INFINITY);
-    unshadowed.shadows = 0;
+    LightDescription unshadowed = point_light(1, 8, 1, INFINITY);
+    unshadowed.shadows = false;
     scene.add_light(unshadowed);
 
     EffectsPlan plan = derive_effects_plan(scene, kProbes, 1, true);
@@ -136,8 +136,8 @@ TEST_CASE("effects plan: shadow casters are the meshes in the shadow caster volu
 TEST_CASE("effects plan: a flat probe set and a single probe still bound a region", "[plan]") {
     Scene scene;
     add_cube(scene, 0, 3, 0, grey());
-    tp_light sun = default_c_light();
-    sun.type = TP_LIGHT_DIRECTIONAL;
+    LightDescription sun;
+    sun.type = LightType::directional;
     scene.add_light(sun);
     for (const std::vector<float>& probes : {std::vector<float>{0, 1, 0, 5, 1, 0, 5, 1, 5}, std::vector<float>{0.5f, 1, 0.5f}}) {
         EffectsPlan plan = derive_effects_plan(scene, probes, 0, true);

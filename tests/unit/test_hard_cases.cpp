@@ -531,6 +531,11 @@ TEST_CASE("hard cases: lattice with 2 eps jitter", "[hard]") {
     Bounds slivers;
     slivers.c0_walk = 0.3;
     slivers.ray = 0.02;  // flat sides, one normal each: see the rotated lattices
+    // As on the rotated lattices, a sliver facet from an edge probe into a side (three nearly
+    // collinear probes) can turn over right outside the hull: whether it does depends on the
+    // rounding of the averaged normals (measured: 1 of the 96 outer cells for about half of the
+    // facet orders the normals could be summed in; hull normals now follow the stored cell order).
+    slivers.allowed_fold_fraction = 0.03;
     run_family(families::lattice(kSlow ? 4 : 6, kSlow ? 4 : 6, kSlow ? 4 : 6, 1, 2.4e-7), 3, slivers);
 }
 

@@ -10,13 +10,16 @@
 #include "bake/scene.h"
 #include "bake/scene_file.h"
 #include "bake/store_builder.h"
+#include "core/error.h"
 #include "core/store.h"
 #include "core/store_data.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 using namespace tetprobe;
@@ -332,5 +335,53 @@ TEST_CASE("leak: ramps narrower than rounding (a valid blob's denormal ramp) sti
             sum += loc.weights[k];
         }
         REQUIRE(sum == Approx(1.0).margin(1e-5));
+    }
+}
+
+TEST_CASE("leak: the blocked pairs do not depend on the thread count, and the build reports them", "[leak][threads]") {
+    const Scene scene = load_scene_file(TP_SOURCE_DIR "/samples/scenes/two_rooms.json");
+    const std::vector<float>& probes = scene.probes();
+    const size_t count = probes.size() / 3;
+    std::vector<std::vector<uint8_t>> blobs;
+    for (uint32_t threads : {1u, 2u, 3u}) {
+        BuildSettings settings;
+        settings.scene = &scene;
+        settings.threads = threads;
+        const StoreData data = build_store_data(probes.data(), 12, nullptr, 108, count, settings);
+        REQUIRE(!data.leak_edges.empty());
+        blobs.push_back(write_store_blob(data));
+    }
+    CHECK(blobs[1] == blobs[0]);
+    CHECK(blobs[2] == blobs[0]);
+
+    // Leak control reports in its own slice of the build's progress, in order, and can be cancelled there.
+    struct Log {
+        std::vector<float> fractions;
+        std::vector<std::string> stages;
+        bool cancel = false;
+    } log;
+    BuildSettings settings;
+    settings.scene = &scene;
+    settings.progress.user = &log;
+    settings.progress.callback = [](void* user, float fraction, const char* stage) {
+        Log& l = *static_cast<Log*>(user);
+        l.fractions.push_back(fraction);
+        l.stages.push_back(stage);
+        return l.cancel && l.stages.back() == "leak control" ? 1 : 0;
+    };
+    build_store_data(probes.data(), 12, nullptr, 108, count, settings);
+    CHECK(std::is_sorted(log.fractions.begin(), log.fractions.end()));
+    CHECK(log.fractions.back() == 1.0f);
+    REQUIRE(std::count(log.stages.begin(), log.stages.end(), "leak control") >= 1);
+    for (size_t i = 0; i < log.stages.size(); ++i)
+        if (log.stages[i] == "leak control") CHECK((log.fractions[i] >= 0.87f && log.fractions[i] <= 0.9f));
+    log = Log();
+    log.cancel = true;
+    try {
+        build_store_data(probes.data(), 12, nullptr, 108, count, settings);
+        FAIL("the build was not cancelled");
+    } catch (const Error& e) {
+        CHECK(e.status() == Status::cancelled);
+        CHECK(std::string(e.what()) == "cancelled by the progress callback during leak control");
     }
 }

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/sh.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <random>
@@ -49,19 +50,19 @@ void add_floor(Scene& scene, float height, float half, const Material& m, float 
     scene.add_mesh(v, 4, indices, 2, {m}, nullptr);
 }
 
-tp_light directional(const float direction[3], float intensity, uint32_t mode = TP_LIGHT_MODE_BAKED) {
-    tp_light light = default_c_light();
-    light.type = TP_LIGHT_DIRECTIONAL;
-    std::memcpy(light.direction, direction, sizeof light.direction);
+LightDescription directional(const float direction[3], float intensity, LightMode mode = LightMode::baked) {
+    LightDescription light;
+    light.type = LightType::directional;
+    std::copy(direction, direction + 3, light.direction.begin());
     light.intensity = intensity;
     light.mode = mode;
     return light;
 }
 
-tp_light point(const float position[3], float intensity) {
-    tp_light light = default_c_light();
-    light.type = TP_LIGHT_POINT;
-    std::memcpy(light.position, position, sizeof light.position);
+LightDescription point(const float position[3], float intensity) {
+    LightDescription light;
+    light.type = LightType::point;
+    std::copy(position, position + 3, light.position.begin());
     light.intensity = intensity;
     return light;
 }
@@ -117,7 +118,7 @@ TEST_CASE("bake: an SH sky with nothing in the way is reproduced", "[bake]") {
 TEST_CASE("bake: one unoccluded directional light is the analytic SH of a delta", "[bake]") {
     Scene scene;
     const float d[3] = {0.3f, -0.8f, 0.52f};
-    tp_light light = directional(d, 2.5f);
+    LightDescription light = directional(d, 2.5f);
     light.color[0] = 1.0f, light.color[1] = 0.5f, light.color[2] = 0.25f;
     scene.add_light(light);
     std::vector<float> sh = bake_lighting(scene, {0, 0, 0, 5, 5, 5}, quick());
@@ -146,8 +147,8 @@ TEST_CASE("bake: a point light follows the inverse square law", "[bake]") {
 
 TEST_CASE("bake: spot cones and ranges cut the light off", "[bake]") {
     Scene scene;
-    tp_light spot = default_c_light();
-    spot.type = TP_LIGHT_SPOT;
+    LightDescription spot;
+    spot.type = LightType::spot;
     spot.position[1] = 10;
     spot.direction[0] = 0, spot.direction[1] = -1, spot.direction[2] = 0;
     spot.inner_angle = 20, spot.outer_angle = 40;
@@ -171,8 +172,8 @@ TEST_CASE("bake: an occluder removes a light, unless it casts no shadows", "[bak
     for (int shadows = 0; shadows < 2; ++shadows) {
         Scene scene;
         const float at[3] = {0, 10, 0};
-        tp_light light = point(at, 100.0f);
-        light.shadows = shadows;
+        LightDescription light = point(at, 100.0f);
+        light.shadows = shadows != 0;
         scene.add_light(light);
         add_floor(scene, 5.0f, 1.0f, material(0.0f));  // black: it only blocks
         // Below the blocker, and off to the side where nothing is in the way.
@@ -354,16 +355,16 @@ TEST_CASE("bake: a one-sided emitter lights only its front; a two-sided one both
 
 TEST_CASE("bake: a realtime light adds nothing direct but its bounced light", "[bake]") {
     const float d[3] = {0.2f, -1.0f, 0.1f};
-    auto bake_with = [&](uint32_t mode, uint32_t bounces) {
+    auto bake_with = [&](LightMode mode, uint32_t bounces) {
         Scene scene;
         scene.add_light(directional(d, 3.0f, mode));
         add_floor(scene, -1.0f, 20.0f, material(0.5f));
         return bake_lighting(scene, {0, 0, 0, 2, 1, -1}, quick(64, bounces));
     };
-    std::vector<float> realtime0 = bake_with(TP_LIGHT_MODE_REALTIME, 0);
+    std::vector<float> realtime0 = bake_with(LightMode::realtime, 0);
     for (float c : realtime0) CHECK(c == 0.0f);
-    std::vector<float> realtime = bake_with(TP_LIGHT_MODE_REALTIME, 1);
-    std::vector<float> baked = bake_with(TP_LIGHT_MODE_BAKED, 1);
+    std::vector<float> realtime = bake_with(LightMode::realtime, 1);
+    std::vector<float> baked = bake_with(LightMode::baked, 1);
     const double length = std::sqrt(0.04 + 1.0 + 0.01);
     const double w[3] = {-0.2 / length, 1.0 / length, -0.1 / length}, rgb[3] = {3, 3, 3};
     std::vector<double> delta = delta_sh(w, rgb);
@@ -434,20 +435,20 @@ TEST_CASE("bake: the progress callback is called and can cancel", "[bake]") {
         float last = -1;
         bool ordered = true;
     } log;
-    settings.progress = [](void* user, float fraction, const char*) {
+    settings.progress.callback = [](void* user, float fraction, const char*) {
         Log* l = static_cast<Log*>(user);
         l->ordered = l->ordered && fraction >= l->last;
         l->last = fraction;
         ++l->calls;
         return 0;
     };
-    settings.progress_user = &log;
+    settings.progress.user = &log;
     bake_lighting(scene, kCullingProbes, settings);
     CHECK(log.calls >= 1);
     CHECK(log.ordered);
     CHECK(log.last == 1.0f);
 
-    settings.progress = [](void*, float, const char*) { return 1; };
+    settings.progress.callback = [](void*, float, const char*) { return 1; };
     try {
         bake_lighting(scene, kCullingProbes, settings);
         FAIL("the bake was not cancelled");

@@ -580,3 +580,56 @@ TEST_CASE("walk fallback beyond the hull: the outer cells alone decide as all ce
     INFO(beyond << " points beyond the hull, " << outer_answers << " answered by an outer cell over all cells");
     REQUIRE(outer_answers > beyond * 9 / 10);
 }
+
+TEST_CASE("on forged blobs every query ends within its cap of examined cells, and says when it gave up", "[locate]") {
+    // The loader proves every index, link and orientation, but not that a tessellation is Delaunay, so
+    // a forged blob can send walks round in circles and every query into the exhaustive search. What one
+    // query examines is capped: a walk of cells + 64 steps, then a search of 3 x outer cells + 4096.
+    const StoreData valid = build(families::random_cloud(1500, 61).positions).data;
+    const uint64_t outer = valid.cell_count() - valid.inner_cell_count, budget = 3 * outer + 4096;
+    REQUIRE(valid.inner_cell_count > budget);  // a search of every inner cell does not fit
+    std::mt19937 rng(62);
+    std::uniform_real_distribution<double> u(-12, 12);
+    SECTION("every tetrahedron flattened onto one plane: walks on it wander, searches find nothing, queries give up") {
+        StoreData flat = valid;
+        for (size_t p = 0; p < flat.probe_count(); ++p) flat.positions[3 * p + 2] = 0.0f;
+        flat.bounds_min[2] = flat.bounds_max[2] = 0.0f;
+        flat.origin[2] = 0.0;
+        const Built b = load(flat);  // flat tetrahedra are valid (TetGen's slivers may be): it loads
+        size_t gave_up = 0;
+        for (int i = 0; i < 200 / kQueryScale + 4; ++i) {
+            // On the plane every cell is flat for the query (it hands it on) and no hull facet has it beyond.
+            const float p[3] = {float(u(rng)), float(u(rng)), i % 2 ? 0.0f : float(0.3 * u(rng))};
+            for (int32_t hint : {-1, int32_t(rng() % flat.cell_count())}) {
+                const Location loc = b.store->locate(p, hint);
+                REQUIRE(loc.steps <= flat.cell_count() + 65);  // the walk's cap: cells + 64 steps past the start
+                REQUIRE(loc.searched <= budget);
+                if (loc.status == Status::invalid_blob) {
+                    ++gave_up;
+                    REQUIRE(loc.searched == budget);
+                    REQUIRE(loc.cell == -1);
+                    float sh[27];
+                    REQUIRE(b.store->interpolate(p, nullptr, sh) == Status::invalid_blob);
+                    for (float x : sh) REQUIRE(x == 0.0f);
+                } else {
+                    REQUIRE(loc.status == Status::ok);
+                }
+            }
+        }
+        CHECK(gave_up > 0);
+    }
+    SECTION("every hull normal turned inwards: each query beyond the hull searches the outer cells, within the cap") {
+        StoreData inward = valid;
+        for (float& n : inward.normals) n = -n;
+        const Built b = load(inward);
+        size_t searched = 0;
+        for (int i = 0; i < 200 / kQueryScale + 4; ++i) {
+            const float p[3] = {float(3 * u(rng)), float(3 * u(rng)), float(3 * u(rng))};
+            const Location loc = b.store->locate(p, -1);
+            REQUIRE(loc.status == Status::ok);
+            REQUIRE(loc.searched <= budget);
+            searched += loc.fallback;
+        }
+        CHECK(searched > 0);
+    }
+}

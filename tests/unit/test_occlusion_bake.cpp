@@ -12,6 +12,7 @@
 #include "core/store.h"
 #include "core/store_data.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -24,19 +25,19 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-tp_light mixed_directional(float x, float y, float z) {
-    tp_light light = default_c_light();
-    light.type = TP_LIGHT_DIRECTIONAL;
-    light.direction[0] = x, light.direction[1] = y, light.direction[2] = z;
-    light.mode = TP_LIGHT_MODE_MIXED;
+LightDescription mixed_directional(float x, float y, float z) {
+    LightDescription light;
+    light.type = LightType::directional;
+    light.direction = {x, y, z};
+    light.mode = LightMode::mixed;
     return light;
 }
 
-tp_light mixed_point(float x, float y, float z) {
-    tp_light light = default_c_light();
-    light.type = TP_LIGHT_POINT;
-    light.position[0] = x, light.position[1] = y, light.position[2] = z;
-    light.mode = TP_LIGHT_MODE_MIXED;
+LightDescription mixed_point(float x, float y, float z) {
+    LightDescription light;
+    light.type = LightType::point;
+    light.position = {x, y, z};
+    light.mode = LightMode::mixed;
     return light;
 }
 
@@ -178,8 +179,8 @@ TEST_CASE("occlusion: a sphere casts the analytic shadow cone of a point light",
     Scene scene;
     add_sphere(scene, centre, radius);
     scene.add_light(mixed_point(float(light[0]), float(light[1]), float(light[2])));
-    tp_light no_shadows = mixed_point(0, 0, 4);
-    no_shadows.shadows = 0;
+    LightDescription no_shadows = mixed_point(0, 0, 4);
+    no_shadows.shadows = false;
     scene.add_light(no_shadows);
     std::vector<float> probes;
     std::mt19937 random(11);
@@ -213,7 +214,7 @@ TEST_CASE("occlusion: a sphere casts the analytic shadow cone of a point light",
 }
 
 TEST_CASE("occlusion: a mixed light bakes only its bounced light, as a realtime one; five are refused", "[occlusion]") {
-    auto scene_with = [](uint32_t mode) {
+    auto scene_with = [](LightMode mode) {
         Scene scene;
         const float lo[3] = {-2, -1, -2}, hi[3] = {2, 2, 2};
         std::vector<float> v;
@@ -225,7 +226,7 @@ TEST_CASE("occlusion: a mixed light bakes only its bounced light, as a realtime 
         Material m;
         m.albedo = {0.6f, 0.6f, 0.6f};
         scene.add_mesh(v.data(), 8, indices.data(), 12, {m}, nullptr);
-        tp_light light = mixed_point(0.5f, 1.5f, 0.2f);
+        LightDescription light = mixed_point(0.5f, 1.5f, 0.2f);
         light.mode = mode;
         light.intensity = 5;
         scene.add_light(light);
@@ -237,9 +238,9 @@ TEST_CASE("occlusion: a mixed light bakes only its bounced light, as a realtime 
     settings.bounces = 1;
     settings.seed = 3;
     settings.threads = 1;
-    const std::vector<float> mixed = bake_lighting(scene_with(TP_LIGHT_MODE_MIXED), probes, settings);
-    const std::vector<float> realtime = bake_lighting(scene_with(TP_LIGHT_MODE_REALTIME), probes, settings);
-    const std::vector<float> baked = bake_lighting(scene_with(TP_LIGHT_MODE_BAKED), probes, settings);
+    const std::vector<float> mixed = bake_lighting(scene_with(LightMode::mixed), probes, settings);
+    const std::vector<float> realtime = bake_lighting(scene_with(LightMode::realtime), probes, settings);
+    const std::vector<float> baked = bake_lighting(scene_with(LightMode::baked), probes, settings);
     REQUIRE(mixed == realtime);
     CHECK(mixed != baked);
     CHECK(mixed[0] > 0);  // bounced light
@@ -253,7 +254,28 @@ TEST_CASE("occlusion: a mixed light bakes only its bounced light, as a realtime 
         CHECK(e.status() == Status::scene);
         CHECK(std::string(e.what()).find("fifth mixed light") != std::string::npos);
     }
-    tp_light baked_light = mixed_point(5, 0, 0);
-    baked_light.mode = TP_LIGHT_MODE_BAKED;
+    LightDescription baked_light = mixed_point(5, 0, 0);
+    baked_light.mode = LightMode::baked;
     CHECK(scene.add_light(baked_light) == 4);  // other modes are still welcome
+}
+
+TEST_CASE("occlusion: the same bytes on 1, 2 and 3 threads", "[occlusion][threads]") {
+    Scene scene;
+    add_wall(scene);
+    const double centre[3] = {-1.0, 0.3, 0.2};
+    add_sphere(scene, centre, 0.5);
+    scene.add_light(mixed_directional(1, 0, 0));
+    scene.add_light(mixed_point(-3, 0.2f, 0.1f));
+    const std::vector<float> probes = lattice(9, -2.0f, 2.0f, 0.05f);
+    std::vector<std::vector<uint8_t>> results;
+    for (uint32_t threads : {1u, 2u, 3u}) {
+        BakeSettings settings;
+        settings.threads = threads;
+        results.push_back(bake_occlusion(scene, probes, settings, nullptr));
+    }
+    // Some probes are shadowed and some are not, so equal bytes say something.
+    CHECK(std::count(results[0].begin(), results[0].end(), uint8_t(0)) > 0);
+    CHECK(std::count(results[0].begin(), results[0].end(), uint8_t(255)) > 0);
+    CHECK(results[1] == results[0]);
+    CHECK(results[2] == results[0]);
 }

@@ -11,7 +11,6 @@
 #include "bake/placement_signal.h"
 #include "bake/probe_placement.h"
 #include "bake/store_builder.h"
-#include "capi/struct_defaults.h"
 #include "core/error.h"
 #include "core/store.h"
 
@@ -43,8 +42,8 @@ Scene lit_room() {
     add_box(scene, {0, 0, 0}, {6, 3, 6}, false);
     add_box(scene, {2.5f, 0, 2.5f}, {3.5f, 3, 3.5f}, true);
     add_box(scene, {4.5f, 0, 0.5f}, {5.5f, 0.8f, 1.5f}, true);
-    tp_light lamp = default_c_light();
-    lamp.position[0] = 0.6f, lamp.position[1] = 2.4f, lamp.position[2] = 0.6f;
+    LightDescription lamp;
+    lamp.position = {0.6f, 2.4f, 0.6f};
     lamp.intensity = 30.0f;
     scene.add_light(lamp);
     return scene;
@@ -84,11 +83,9 @@ Scene courtyard() {
     wall({8, 0, 8}, {0, 0, 8}, {0, h, 8}, {8, h, 8});
     wall({0, 0, 8}, {0, 0, 0}, {0, h, 0}, {0, h, 8});
     wall({8, 0, 0}, {8, 0, 8}, {8, h, 8}, {8, h, 0});
-    tp_light sun = default_c_light();
-    sun.type = TP_LIGHT_DIRECTIONAL;
-    const float d[3] = {0.3f, -0.6f, 0.74f};
-    const float n = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    for (int a = 0; a < 3; ++a) sun.direction[a] = d[a] / n;
+    LightDescription sun;
+    sun.type = LightType::directional;
+    sun.direction = {0.3f, -0.6f, 0.74f};
     sun.intensity = 3.0f;
     scene.add_light(sun);
     const float sky[3] = {0.25f, 0.3f, 0.4f};
@@ -178,7 +175,7 @@ TEST_CASE("placement candidates: outside geometry and clear of every surface by 
     CandidateRules rules;
     rules.spacing = 0.75;
     rules.margin = 0.2;
-    const Candidates c = find_candidates(scene, rules, 1, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 1, 2, Progress{});
     CHECK(c.tested == 256);
     CHECK(candidate_bound(scene, rules) == 256);
     // Exactly the lattice points (8 x 4 x 8, centred on the room) that are outside the solids and at least
@@ -212,7 +209,7 @@ TEST_CASE("placement candidates: walkable stands points across the band above ev
     rules.margin = 0.2;
     rules.walk_min_height = 0.0;
     rules.walk_max_height = 1.5;
-    const Candidates c = find_candidates(scene, rules, 1, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 1, 2, Progress{});
     // Independently: per column, per floor, the band from the floor + 0.2 (the margin) to the lower of
     // floor + 1.5 and the surface above less the margin, in layers at most 0.75 apart, both ends included
     // (a ten-thousandth of a spacing inside).
@@ -265,7 +262,7 @@ TEST_CASE("placement candidates: walkable bands end below the ceiling, inside th
     auto in_room = [&](const float* p) {
         return p[0] > 0 && p[0] < 6 && p[1] > 0 && double(p[1]) <= ceiling + 1e-6 && p[2] > 0 && p[2] < 6;
     };
-    const Candidates c = find_candidates(scene, rules, 1, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 1, 2, Progress{});
     size_t on_crate = 0;
     for (size_t i = 0; i < c.positions.size() / 3; ++i) {
         CHECK(in_room(&c.positions[3 * i]));
@@ -287,7 +284,7 @@ TEST_CASE("placement candidates: a walkable band far taller than the scene still
     rules.spacing = 0.5;
     rules.margin = 0.01;
     rules.walk_max_height = 1e4;
-    const Candidates c = find_candidates(scene, rules, 1, 1, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 1, 1, Progress{});
     CHECK(c.positions.size() / 3 == 4 * 3);  // 2 x 2 columns, the band 0.01 to 0.99 in three layers
     for (size_t i = 0; i < c.positions.size() / 3; ++i) {
         const float* p = &c.positions[3 * i];
@@ -301,7 +298,7 @@ TEST_CASE("placement candidates: the whole mode stays within the scene's bounds"
     add_box(scene, {0, 0, 0}, {5.3f, 2.9f, 4.1f}, false);
     CandidateRules rules;
     rules.margin = 0;
-    const Candidates c = find_candidates(scene, rules, 1, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 1, 2, Progress{});
     CHECK(c.positions.size() / 3 == 5 * 2 * 4);
     for (size_t i = 0; i < c.positions.size() / 3; ++i) {
         const float* p = &c.positions[3 * i];
@@ -316,7 +313,7 @@ TEST_CASE("placement candidates: playable seeds keep the space they reach", "[pl
     add_box(scene, {6, 0, 0}, {10, 3, 4}, false);
     CandidateRules rules;
     rules.mode = PlacementMode::walkable;
-    const Candidates all = find_candidates(scene, rules, 1, 2, ProgressRange{});
+    const Candidates all = find_candidates(scene, rules, 1, 2, Progress{});
     size_t first_room = 0;
     for (size_t i = 0; i < all.positions.size() / 3; ++i) first_room += all.positions[3 * i] < 5;
     REQUIRE(first_room > 0);
@@ -325,7 +322,7 @@ TEST_CASE("placement candidates: playable seeds keep the space they reach", "[pl
 
     const float seed[3] = {1.2f, 0.4f, 2.1f};
     scene.set_playable_seeds(seed, 1);
-    const Candidates reached = find_candidates(scene, rules, 1, 2, ProgressRange{});
+    const Candidates reached = find_candidates(scene, rules, 1, 2, Progress{});
     CHECK(reached.positions.size() / 3 == first_room);
     CHECK(reached.unreached == all.positions.size() / 3 - first_room);
     for (size_t i = 0; i < reached.positions.size() / 3; ++i) CHECK(reached.positions[3 * i] < 5);
@@ -334,7 +331,7 @@ TEST_CASE("placement candidates: playable seeds keep the space they reach", "[pl
     const float nowhere[3] = {50, 0.5f, 50};
     scene.set_playable_seeds(nowhere, 1);
     std::string message;
-    CHECK(status_of([&] { find_candidates(scene, rules, 1, 2, ProgressRange{}); }, &message) == Status::scene);
+    CHECK(status_of([&] { find_candidates(scene, rules, 1, 2, Progress{}); }, &message) == Status::scene);
     CHECK(message.find("1 playable seeds") != std::string::npos);
 }
 
@@ -344,7 +341,7 @@ TEST_CASE("placement validation points: free points over the candidates' volume,
     rules.mode = PlacementMode::walkable;
     rules.spacing = 0.75;
     rules.margin = 0.2;
-    const Candidates c = find_candidates(scene, rules, 3, 2, ProgressRange{});
+    const Candidates c = find_candidates(scene, rules, 3, 2, Progress{});
     const size_t candidates = c.positions.size() / 3, points = c.validation.size() / 3;
     // One per candidate below 1,024 candidates, a few lost to moves into geometry.
     CHECK(points <= candidates);
@@ -359,7 +356,7 @@ TEST_CASE("placement validation points: free points over the candidates' volume,
     // The strip between the walls and the candidates (which keep the margin) is measured too.
     CHECK(near_wall > 0);
     // Another seed draws other points.
-    CHECK(find_candidates(scene, rules, 4, 2, ProgressRange{}).validation != c.validation);
+    CHECK(find_candidates(scene, rules, 4, 2, Progress{}).validation != c.validation);
 }
 
 TEST_CASE("placement: the same bytes for a seed on one thread and two; every count a prefix", "[placement]") {
@@ -416,7 +413,7 @@ TEST_CASE("placement: beats random subsamples of its candidates at a sharp shado
     const std::vector<float> reference = bake_lighting(scene, points, reference_bake);
     const double smart = measured_error(scene, placed.positions, points, reference);
 
-    const Candidates all = find_candidates(scene, settings.rules, settings.seed, 2, ProgressRange{});
+    const Candidates all = find_candidates(scene, settings.rules, settings.seed, 2, Progress{});
     REQUIRE(all.positions.size() / 3 == placed.candidates);
     double random = 0;
     for (uint32_t seed : {1u, 2u, 3u})
@@ -451,12 +448,12 @@ TEST_CASE("placement: noise does not steer it (a smooth field baked with few ray
     const Placement placed = place_probes(scene, settings);
     REQUIRE(placed.positions.size() == 3 * 100);
     // The candidates' own noise is large: the half bakes of one candidate differ by a fifth of the light.
-    const Candidates all = find_candidates(scene, settings.rules, settings.seed, 2, ProgressRange{});
+    const Candidates all = find_candidates(scene, settings.rules, settings.seed, 2, Progress{});
     BakeSettings bake;
     bake.rays = 4;
     bake.bounces = 1;
     bake.threads = 2;
-    const PointSignal signal = measure_signal(scene, all.positions, bake, ProgressRange{});
+    const PointSignal signal = measure_signal(scene, all.positions, bake, Progress{});
     double noise = 0, mean = 0;
     for (size_t i = 0; i < signal.noise.size(); ++i) {
         noise += signal.noise[i] / signal.noise.size() / kSignalSize;
@@ -482,9 +479,9 @@ TEST_CASE("placement: a 250 x 100 x 250 m level places at half a metre (memory g
     add_box(scene, {0, -1, 100}, {250, 0, 104}, true);
     add_box(scene, {123, 9, 0}, {127, 10, 250}, true);
     add_box(scene, {0, 0, 0}, {1, 100, 1}, true);
-    tp_light sun = default_c_light();
-    sun.type = TP_LIGHT_DIRECTIONAL;
-    sun.direction[0] = 0.0f, sun.direction[1] = -1.0f, sun.direction[2] = 0.0f;
+    LightDescription sun;
+    sun.type = LightType::directional;
+    sun.direction = {0.0f, -1.0f, 0.0f};
     scene.add_light(sun);
     PlacementSettings settings;
     settings.rules.mode = PlacementMode::walkable;
@@ -516,12 +513,12 @@ TEST_CASE("placement: cancelling in any stage stops with Status::cancelled", "[p
             const char* stage;
             bool reached = false;
         } cancel{stage};
-        settings.progress = [](void* user, float, const char* now) {
+        settings.progress.callback = [](void* user, float, const char* now) {
             auto* c = static_cast<Cancel*>(user);
             c->reached = c->reached || std::string(now) == c->stage;
             return c->reached ? 1 : 0;
         };
-        settings.progress_user = &cancel;
+        settings.progress.user = &cancel;
         CHECK(status_of([&] { place_probes(scene, settings); }) == Status::cancelled);
         CHECK(cancel.reached);
     }

@@ -10,6 +10,7 @@
 #include "probe_families.h"
 
 #include "bake/store_builder.h"
+#include "core/coordinate_limits.h"
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_data.h"
@@ -750,4 +751,226 @@ TEST_CASE("a neighbour that does not share the facet is refused", "[store_blob]"
     std::swap(cloud.cell_neighbours[4 * c], cloud.cell_neighbours[4 * c + 1]);
     REQUIRE(try_load(write_store_blob(cloud), nullptr, &message) == Status::invalid_blob);
     CHECK(message.find("does not share the facet") != std::string::npos);
+}
+
+TEST_CASE("a size that cannot be rounded up to a whole cache line is refused before anything is written", "[store_blob]") {
+    // The copy's size used to be rounded up to 64 bytes with a wrap for sizes from SIZE_MAX - 62 up:
+    // a zero-byte allocation, then a write before it.
+    const std::vector<uint8_t> blob = write_store_blob(golden_store_data());
+    for (const size_t size : {SIZE_MAX, SIZE_MAX - 1, SIZE_MAX - 62, SIZE_MAX - 63})
+        REQUIRE_THROWS_AS(Store::load(blob.data(), size), std::bad_alloc);
+}
+
+namespace {
+
+// A valid blob with one header field replaced and the checksum recomputed: a forged blob.
+template <class T>
+std::vector<uint8_t> forged(std::vector<uint8_t> blob, size_t offset, T value) {
+    std::memcpy(blob.data() + offset, &value, sizeof value);
+    repair_checksum(blob);
+    return blob;
+}
+
+void require_refused(const std::vector<uint8_t>& blob, const char* words) {
+    std::string message;
+    REQUIRE(try_load(blob, nullptr, &message) == Status::invalid_blob);
+    INFO(message);
+    CHECK(message.find(words) != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("the loader refuses an origin, bounds or normals the builder never writes", "[store_blob]") {
+    const std::vector<uint8_t> valid = write_store_blob(built(families::random_cloud(200, 41, 50, 1e4)));
+    REQUIRE(try_load(valid) == Status::ok);
+    const size_t origin = offsetof(StoreHeader, origin), bounds_min = offsetof(StoreHeader, bounds_min),
+                 bounds_max = offsetof(StoreHeader, bounds_max);
+    // An origin of 5.7e77 made every query's local position infinite, and every query an exhaustive search.
+    require_refused(forged(valid, origin, 5.7e77), "origin[0] is 5.7e+77");
+    require_refused(forged(valid, origin + 16, -std::nextafter(kMaxCoordinate, HUGE_VAL)), "origin[2]");
+    REQUIRE(try_load(forged(valid, origin + 8, kMaxCoordinate)) == Status::ok);  // the limit itself is the builder's
+    // Bounds are the positions' bounding box, exactly: wider, narrower or beyond the limit are refused.
+    StoreHeader h;
+    std::memcpy(&h, valid.data(), sizeof h);
+    require_refused(forged(valid, bounds_min, h.bounds_min[0] - 1.0f), "bounds along axis 0 are");
+    require_refused(forged(valid, bounds_max + 4, std::nextafter(h.bounds_max[1], 0.0f)), "the positions span");
+    require_refused(forged(valid, bounds_max + 8, 3e30f), "beyond the builder's limit of 2e30");
+    {
+        // Positions far beyond the limit, with bounds to match: refused by the bounds' limit.
+        std::vector<uint8_t> blob = valid;
+        const float far = 1e33f;
+        std::memcpy(blob.data() + section(blob, kSectionPositions).offset, &far, 4);
+        std::memcpy(blob.data() + bounds_max, &far, 4);
+        repair_checksum(blob);
+        require_refused(blob, "beyond the builder's limit");
+    }
+    {
+        // A normal is a unit vector or zero.
+        std::vector<uint8_t> blob = valid;
+        const float long_normal = 1.5f;
+        std::memcpy(blob.data() + section(blob, kSectionNormals).offset + 4, &long_normal, 4);
+        repair_checksum(blob);
+        require_refused(blob, "normals[1] is 1.5");
+    }
+}
+
+TEST_CASE("the builder's stores at its coordinate limits load: an origin at 1e30, a tilted plane moved onto its fit",
+          "[store_blob]") {
+    // The largest float within the builder's limit, at both ends of every axis: the origin is 0 and
+    // local coordinates reach the limit.
+    const float edge = std::nextafter(float(kMaxCoordinate), 0.0f);
+    families::ProbeSet box;
+    for (int c = 0; c < 8; ++c) box.add(c & 1 ? edge : -edge, c & 2 ? edge : -edge, c & 4 ? edge : -edge);
+    box.add(0.25 * edge, -0.5 * edge, 0.125 * edge);
+    CHECK(try_load(write_store_blob(built(box))) == Status::ok);
+    // All probes at the far end: the origin sits at the limit.
+    families::ProbeSet far = families::random_cloud(40, 43, 1e24, 0.0);
+    for (size_t i = 0; i < far.positions.size(); i += 3) far.positions[i] = edge - float(i) * 1e23f;
+    const StoreData at_limit = built(far);
+    CHECK(std::fabs(at_limit.origin[0]) > 0.99 * kMaxCoordinate);
+    CHECK(try_load(write_store_blob(at_limit)) == Status::ok);
+    // A thick tilted "plane" at the flat tolerance's largest value (0.1), spanning the limit, lower at
+    // its high end: its probes move onto the fitted plane, beyond the world box and beyond 1e30 from
+    // the origin, yet within the local limit of 2e30.
+    families::ProbeSet slab;
+    std::mt19937 rng(44);
+    std::uniform_real_distribution<double> u(-1, 1);
+    for (int i = 0; i < 200; ++i) {
+        const double a = u(rng), b = u(rng), off = a > 0.8 ? -0.09 : 0.01 * u(rng);
+        slab.add(edge * a, edge * b, edge * std::fmax(-1.0, std::fmin(1.0, a + off)));
+    }
+    BuildSettings settings;
+    settings.flat_tolerance = 0.1;
+    const StoreData flat = build_store_data(slab.positions.data(), 12, nullptr, 108, slab.count(), settings);
+    CHECK(flat.dimension == 2);
+    double farthest = 0;
+    for (float x : flat.positions) farthest = std::fmax(farthest, std::fabs(double(x)));
+    CHECK(farthest > kMaxCoordinate);
+    CHECK(try_load(write_store_blob(flat)) == Status::ok);
+}
+
+TEST_CASE("a line or flat store whose axis does not match its positions is refused", "[store_blob]") {
+    const size_t axis = offsetof(StoreHeader, axis);
+    // A line along x (stored exactly on its fit): its cells have no length along y or z. Loaded with
+    // axis y it used to answer probe 0 everywhere.
+    families::ProbeSet along_x;
+    for (int i = 0; i < 12; ++i) along_x.add(2.0 + 0.5 * i, -1.0, 3.0);
+    const StoreData line = built(along_x);
+    REQUIRE(line.dimension == 1);
+    REQUIRE(line.axis == 0);
+    for (const uint32_t layout : {0u, kFlagCompact}) {
+        StoreData data = line;
+        data.flags |= layout;
+        const std::vector<uint8_t> valid = write_store_blob(data);
+        REQUIRE(try_load(valid) == Status::ok);
+        require_refused(forged(valid, axis, uint32_t(1)), "has zero length along axis 1");
+        require_refused(forged(valid, axis, uint32_t(2)), "has zero length along axis 2");
+    }
+    // A flat set in the plane z = 2 is triangulated in x and y (axis 2 dropped); dropping x instead
+    // projects every triangle onto a segment.
+    const StoreData flat = built(families::plane(40, 45));
+    REQUIRE(flat.dimension == 2);
+    REQUIRE(flat.axis == 2);
+    const std::vector<uint8_t> valid = write_store_blob(flat);
+    require_refused(forged(valid, axis, uint32_t(0)), "has zero area across axis 0");
+}
+
+TEST_CASE("a line whose probes share a coordinate along its axis builds without a zero-length cell", "[store_blob]") {
+    // Without merging, two probes that differ only across the line (or by less than a float's step
+    // along it) would have made a cell of zero length, which no point is in and the loader refuses.
+    families::ProbeSet set;
+    for (int i = 0; i < 10; ++i) set.add(i, 0, 0);
+    set.add(4, 1e-6, 0);                 // across the line only
+    set.add(1e-10, 0, 0);                // less than a float's step from probe 0 around the origin (4.5)
+    BuildSettings settings;
+    settings.merge_tolerance = 0;
+    const StoreData d = build_store_data(set.positions.data(), 12, nullptr, 108, set.count(), settings);
+    REQUIRE(d.dimension == 1);
+    std::unique_ptr<Store> store;
+    REQUIRE(try_load(write_store_blob(d), &store) == Status::ok);
+    for (uint32_t c = 0; c < d.inner_cell_count; ++c)
+        CHECK(d.positions[3 * d.cell_vertices[4 * c + 1] + d.axis] > d.positions[3 * d.cell_vertices[4 * c] + d.axis]);
+    // Every input probe is answered, by its survivor where it was merged.
+    for (size_t p = 0; p < set.count(); ++p) {
+        const Location loc = store->locate(&set.positions[3 * p], -1);
+        REQUIRE(loc.status == Status::ok);
+        float w = 0;
+        for (int k = 0; k < 4; ++k)
+            if (loc.probes[k] == store->input_to_stored(uint32_t(p))) w += loc.weights[k];
+        CHECK(w == Approx(1.0f).margin(1e-6));
+    }
+}
+
+namespace {
+
+// Forged blobs (valid checksums) for the blob fuzzer's seeds: each a valid store with one thing the
+// builder never writes. Those the loader refuses, and those it loads whose queries the cap bounds.
+std::vector<std::pair<std::string, std::vector<uint8_t>>> forged_blobs() {
+    std::vector<std::pair<std::string, std::vector<uint8_t>>> blobs;
+    const std::vector<uint8_t> cloud = write_store_blob(built(families::random_cloud(300, 47)));
+    blobs.emplace_back("forged_origin_5.7e77", forged(cloud, offsetof(StoreHeader, origin), 5.7e77));
+    StoreHeader h;
+    std::memcpy(&h, cloud.data(), sizeof h);
+    blobs.emplace_back("forged_bounds_narrower", forged(cloud, offsetof(StoreHeader, bounds_max), h.bounds_max[0] * 0.5f));
+    families::ProbeSet along_x;
+    for (int i = 0; i < 40; ++i) along_x.add(0.5 * i, 1.0, -2.0);
+    blobs.emplace_back("forged_line_axis", forged(write_store_blob(built(along_x)), offsetof(StoreHeader, axis), uint32_t(1)));
+    blobs.emplace_back("forged_plane_axis",
+                       forged(write_store_blob(built(families::plane(60, 48))), offsetof(StoreHeader, axis), uint32_t(0)));
+    // Loadable, with queries that only the cap ends quickly: every tetrahedron flat (on the plane z = 0,
+    // where the fuzzer's queries are), every hull normal inwards, every start cell the same.
+    const StoreData big = built(families::random_cloud(1000, 49));
+    StoreData flat = big;
+    for (size_t p = 0; p < flat.probe_count(); ++p) flat.positions[3 * p + 2] = 0.0f;
+    flat.bounds_min[2] = flat.bounds_max[2] = 0.0f;
+    flat.origin[2] = 0.0;
+    blobs.emplace_back("forged_flat_tetrahedra", write_store_blob(flat));
+    StoreData inward = built(families::random_cloud(300, 47));
+    for (float& n : inward.normals) n = -n;
+    blobs.emplace_back("forged_inward_normals", write_store_blob(inward));
+    StoreData lying = built(families::random_cloud(300, 47));
+    for (uint32_t& cell : lying.grid_cells) cell = lying.inner_cell_count - 1;
+    blobs.emplace_back("forged_lying_start_grid", write_store_blob(lying));
+    return blobs;
+}
+
+}  // namespace
+
+TEST_CASE("write the blob fuzzer's forged seeds (run on purpose only)", "[.write-forged-seeds]") {
+    for (const auto& named : forged_blobs()) {
+        std::ofstream out(std::string(TP_SOURCE_DIR "/tests/fuzz/seeds/fuzz_load/") + named.first, std::ios::binary);
+        out.put(0);  // the fuzzer's mode byte: no checksum repair, no flag flipped
+        out.write(reinterpret_cast<const char*>(named.second.data()), std::streamsize(named.second.size()));
+        REQUIRE(out.good());
+    }
+}
+
+TEST_CASE("forged blobs are refused, or loaded with every query ending within its cap", "[store_blob]") {
+    for (const auto& named : forged_blobs()) {
+        INFO(named.first);
+        std::unique_ptr<Store> store;
+        const Status status = try_load(named.second, &store);
+        const bool loads = named.first == "forged_flat_tetrahedra" || named.first == "forged_inward_normals" ||
+                           named.first == "forged_lying_start_grid";
+        REQUIRE(status == (loads ? Status::ok : Status::invalid_blob));
+        if (!loads) continue;
+        const StoreHeader& h = store->header();
+        const uint64_t budget = 3 * uint64_t(h.cell_count - h.inner_cell_count) + 4096;
+        std::mt19937 rng(50);
+        std::uniform_real_distribution<double> u(-1.5, 1.5);
+        size_t gave_up = 0;
+        for (int i = 0; i < 60; ++i) {
+            float p[3];
+            for (int k = 0; k < 3; ++k) {
+                const double mid = 0.5 * (double(h.bounds_min[k]) + h.bounds_max[k]), half = 0.5 * (double(h.bounds_max[k]) - h.bounds_min[k]);
+                p[k] = float(h.origin[k] + mid + u(rng) * half);
+            }
+            const Location loc = store->locate(p, i % 2 ? -1 : int32_t(i * 37 % h.cell_count));
+            REQUIRE(loc.steps <= h.cell_count + 65);
+            REQUIRE(loc.searched <= budget);
+            REQUIRE((loc.status == Status::ok || loc.status == Status::invalid_blob));
+            gave_up += loc.status == Status::invalid_blob;
+        }
+        if (named.first == "forged_flat_tetrahedra") CHECK(gave_up > 0);
+    }
 }

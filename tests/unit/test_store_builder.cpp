@@ -11,7 +11,7 @@
 #include "bake/delaunay.h"
 #include "bake/probe_merge.h"
 #include "bake/set_dimension.h"
-#include "bake/start_grid.h"
+#include "core/start_grid.h"
 #include "bake/store_builder.h"
 #include "capi/tetprobe.h"
 #include "core/error.h"
@@ -686,8 +686,8 @@ TEST_CASE("builder: progress reaches 1 in order, and a non-zero return cancels",
     const std::vector<float> p = families::random_cloud(40, 8).positions;
     ProgressLog log;
     BuildSettings settings;
-    settings.progress = &log_progress;
-    settings.progress_user = &log;
+    settings.progress.callback = &log_progress;
+    settings.progress.user = &log;
     tetprobe::build_store_data(p.data(), 12, nullptr, 108, p.size() / 3, settings);
     REQUIRE(log.fractions.size() >= 5);
     REQUIRE(log.fractions.front() == 0.0f);
@@ -697,10 +697,10 @@ TEST_CASE("builder: progress reaches 1 in order, and a non-zero return cancels",
     for (int at : {0, 2, int(log.fractions.size()) - 1}) {
         ProgressLog cancel;
         cancel.cancel_at = at;
-        settings.progress_user = &cancel;
+        settings.progress.user = &cancel;
         auto e = build_error(p, settings);
         REQUIRE(e.first == tetprobe::Status::cancelled);
-        REQUIRE(e.second == "build cancelled");
+        REQUIRE(e.second == "cancelled by the progress callback during " + cancel.stages.back());
         REQUIRE(cancel.fractions.size() == size_t(at) + 1);
     }
 }

@@ -1,6 +1,6 @@
-"""`python3 -m tetprobe ...`: the tetprobe command (see tetprobe.cli)."""
+"""`python3 -m tetprobe ARGS`: runs the C command-line tool with ARGS (see tetprobe.tool)."""
 import sys
 
-from .cli import main
+from .tool import main
 
 sys.exit(main())

@@ -1,4 +1,9 @@
-"""numpy arrays as (array, row stride) pairs for the C ABI, copying only when the layout demands it."""
+"""Arguments checked for the C ABI: numpy arrays as (array, row stride) pairs, copying only when the layout
+demands it, and scalars, names, paths and callbacks, each failure a TypeError or ValueError naming the
+parameter."""
+
+import numbers
+import os
 
 import numpy as np
 
@@ -6,7 +11,8 @@ from ._native import ProgressFn
 
 
 #: The array kinds accepted for each target dtype: numbers convert to float32, only integers to indices.
-_ACCEPTED_KINDS = {np.dtype(np.float32): "fiu", np.dtype(np.int32): "iu", np.dtype(np.uint32): "iu"}
+_ACCEPTED_KINDS = {np.dtype(np.float32): "fiu", np.dtype(np.int32): "iu", np.dtype(np.uint32): "iu",
+                   np.dtype(np.uint8): "iu"}
 
 
 def as_array(values, name, dtype=np.float32):
@@ -57,12 +63,67 @@ def vector(values, width, name, dtype=np.float32):
     return data
 
 
+def _type_name(value):
+    return type(value).__name__
+
+
+def number(value, name):
+    """value as a float: any real number (Python, numpy) but a bool; TypeError naming the parameter."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Real):
+        raise TypeError("%s must be a number (got %s)" % (name, _type_name(value)))
+    return float(value)
+
+
+def integer(value, name, low=None, high=None):
+    """value as an int in [low, high] (None = unbounded): any integer (Python, numpy) but a bool; TypeError
+    or ValueError naming the parameter."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, numbers.Integral):
+        raise TypeError("%s must be an integer (got %s)" % (name, _type_name(value)))
+    value = int(value)
+    if (low is not None and value < low) or (high is not None and value > high):
+        raise ValueError("%s must lie in [%s, %s] (got %d)" % (name, low, "inf" if high is None else high, value))
+    return value
+
+
+#: The largest value of a uint32_t / uint64_t parameter.
+UINT32_MAX, UINT64_MAX = 0xFFFFFFFF, 0xFFFFFFFFFFFFFFFF
+
+
+def flag(value, name):
+    """value as a bool: True, False (Python or numpy) or the integers 0 and 1; TypeError naming the parameter."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    if isinstance(value, numbers.Integral) and value in (0, 1):
+        return bool(value)
+    raise TypeError("%s must be True or False (got %r)" % (name, value))
+
+
+def choice(value, table, name):
+    """The table's value for the name `value` (case-insensitive): TypeError if it is not a string, ValueError
+    naming the parameter and the choices if the table does not hold it."""
+    if not isinstance(value, str):
+        raise TypeError("%s must be one of %s (got %s)" % (name, ", ".join(repr(k) for k in table), _type_name(value)))
+    if value.lower() not in table:
+        raise ValueError("%s must be one of %s (got %r)" % (name, ", ".join(repr(k) for k in table), value))
+    return table[value.lower()]
+
+
+def path(value, name):
+    """A file path (str, bytes or os.PathLike) encoded for the C ABI; TypeError naming the parameter."""
+    if not isinstance(value, (str, bytes, os.PathLike)):
+        raise TypeError("%s must be a path: str, bytes or os.PathLike (got %s)" % (name, _type_name(value)))
+    return os.fsencode(value)
+
+
 class Progress:
     """Wraps a Python callable(fraction, stage) -> truthy-to-cancel as a tp_progress_fn.
 
     An exception raised by the callable cancels the C call and is re-raised after it returns."""
 
-    def __init__(self, callback):
+    def __init__(self, callback, name="progress"):
+        if callback is not None and not callable(callback):
+            raise TypeError("%s must be a callable progress(fraction, stage) or None (got %s)" %
+                            (name, _type_name(callback)))
         self.callback = callback
         self.error = None
         self.function = ProgressFn(self._call) if callback is not None else ProgressFn()

@@ -41,6 +41,9 @@ PLACEMENT_WHOLE = 0
 PLACEMENT_WALKABLE = 1
 INSIDE_DROP = 0
 INSIDE_PUSH = 1
+UP_FILE = 0
+#: TP_UP_POS_X ... TP_UP_NEG_Z by name.
+UP_AXES = {"+x": 1, "-x": 2, "+y": 3, "-y": 4, "+z": 5, "-z": 6}
 
 ProgressFn = CFUNCTYPE(c_int, c_void_p, c_float, c_char_p)
 
@@ -50,6 +53,10 @@ class BuildOptions(Structure):
                 ("flat_tolerance", c_double), ("progress", ProgressFn), ("progress_user", c_void_p),
                 ("occlusion", c_void_p), ("occlusion_stride", c_size_t), ("occlusion_lights", c_uint32),
                 ("scene", c_void_p)]
+
+
+class StoreLoadOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("max_file_bytes", c_uint64)]
 
 
 class StoreInfo(Structure):
@@ -84,6 +91,10 @@ class Light(Structure):
                 ("color", c_float * 3), ("intensity", c_float), ("position", c_float * 3),
                 ("direction", c_float * 3), ("range", c_float), ("inner_angle", c_float),
                 ("outer_angle", c_float)]
+
+
+class SceneLoadOptions(Structure):
+    _fields_ = [("struct_size", c_uint32), ("up", c_uint32), ("scale", c_float)]
 
 
 class BakeOptions(Structure):
@@ -133,7 +144,9 @@ PROTOTYPES = (
     ("tp_store_build", _status, (_buffer, c_size_t, _buffer, c_size_t, c_size_t, POINTER(BuildOptions),
                                  POINTER(_handle))),
     ("tp_store_load", _status, (_buffer, c_size_t, POINTER(_handle))),
+    ("tp_store_load_options_init", _status, (POINTER(StoreLoadOptions),)),
     ("tp_store_load_file", _status, (c_char_p, POINTER(_handle))),
+    ("tp_store_load_file_ex", _status, (c_char_p, POINTER(StoreLoadOptions), POINTER(_handle))),
     ("tp_store_save_file", _status, (_handle, c_char_p)),
     ("tp_store_blob", _status, (_handle, POINTER(c_void_p), POINTER(c_size_t))),
     ("tp_store_release", _status, (_handle,)),
@@ -169,6 +182,11 @@ PROTOTYPES = (
     ("tp_scene_create", _status, (POINTER(_handle),)),
     ("tp_scene_release", _status, (_handle,)),
     ("tp_scene_load_file", _status, (c_char_p, POINTER(_handle))),
+    ("tp_scene_load_options_init", _status, (POINTER(SceneLoadOptions),)),
+    ("tp_scene_load_file_ex", _status, (c_char_p, POINTER(SceneLoadOptions), POINTER(_handle))),
+    ("tp_scene_notes", _status, (_handle, POINTER(c_char), c_size_t, POINTER(c_size_t))),
+    ("tp_scene_up", _status, (_handle, POINTER(c_uint32))),
+    ("tp_scene_set_up", _status, (_handle, c_uint32)),
     ("tp_scene_add_mesh", _status, (_handle, _buffer, c_size_t, _buffer, c_size_t, POINTER(Material), c_size_t,
                                     _buffer, POINTER(c_uint32))),
     ("tp_scene_add_light", _status, (_handle, POINTER(Light), POINTER(c_uint32))),
@@ -195,14 +213,23 @@ PROTOTYPES = (
 _LIBRARY_NAME = {"darwin": "libtetprobe.dylib", "win32": "tetprobe.dll"}.get(sys.platform, "libtetprobe.so")
 
 
+def _explicit_library():
+    """$TETPROBE_LIBRARY as a library path: the file it names, or the library inside the folder it names."""
+    explicit = os.environ.get("TETPROBE_LIBRARY")
+    if explicit and os.path.isdir(explicit):
+        return os.path.join(explicit, _LIBRARY_NAME)
+    return explicit
+
+
 def candidate_paths():
-    """Where the library is looked for, in order: $TETPROBE_LIBRARY, next to the package, and (only when
-    the package sits in the source tree) the tree's build/ directory; the system's search path comes last."""
+    """Where the library is looked for, in order: $TETPROBE_LIBRARY (a library file, or a folder holding
+    it), next to the package, and (only when the package sits in the source tree) the tree's build/
+    directory; the system's search path comes last."""
     package_dir = os.path.dirname(os.path.abspath(__file__))
     repo_root = os.path.normpath(os.path.join(package_dir, "..", "..", ".."))
     paths = []
-    if os.environ.get("TETPROBE_LIBRARY"):
-        paths.append(os.environ["TETPROBE_LIBRARY"])
+    if _explicit_library():
+        paths.append(_explicit_library())
     paths.append(os.path.join(package_dir, _LIBRARY_NAME))
     # An installed package must not pick up whatever build/ happens to lie two levels above it.
     if os.path.exists(os.path.join(repo_root, "capi", "tetprobe.h")):
@@ -221,7 +248,7 @@ def check_version(library_version, package_version=PACKAGE_VERSION, path=None):
 
 
 def _load():
-    explicit = os.environ.get("TETPROBE_LIBRARY")
+    explicit = _explicit_library()
     tried = []
     for path in candidate_paths():
         if path != explicit and not os.path.exists(path):
@@ -231,7 +258,7 @@ def _load():
             return ctypes.CDLL(path), path
         except OSError as error:
             if path == explicit:
-                raise ImportError("TETPROBE_LIBRARY=%s cannot be loaded: %s" % (path, error))
+                raise ImportError("TETPROBE_LIBRARY=%s cannot be loaded: %s" % (os.environ["TETPROBE_LIBRARY"], error))
             tried.append(path)
     system = ctypes.util.find_library("tetprobe")
     if system:

@@ -2,14 +2,13 @@
 
 import collections
 import ctypes
-import math
 
 import numpy as np
 
 from . import _native
-from ._arrays import Progress, rows
+from ._arrays import UINT32_MAX, UINT64_MAX, Progress, choice, integer, number, rows, vector
 from ._native import check, lib
-from .errors import Error, Status
+from .scene import scene_argument
 
 #: place_probes' result: positions[N, 3] float32 in the order chosen (the first k are the placement for k
 #: probes) and error_curve[K, 2] float32 of (probe count, estimated error), counts increasing to the result.
@@ -24,7 +23,7 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
     """Proposes probe positions for a scene -> Placement(positions[N, 3], error_curve[K, 2]).
 
     Candidates on a lattice of `spacing` (world units) over the scene (mode "whole") or across
-    walk_height = (min, max) world units above upward-facing (+y) surfaces (mode "walkable"), none inside
+    walk_height=(min, max) world units above upward-facing surfaces (the scene's up; mode "walkable"), none inside
     geometry or within `margin` (world units) of a surface, only those connected to the scene's playable
     seeds when it has some; baked with `rays` per candidate (in two halves) and `bounces`, then chosen by
     greedy insertion up to `target` probes or until the estimated error is at most error_bound (default
@@ -35,17 +34,18 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
     the order chosen (the first k are the placement for k probes); error_curve[K, 2] holds (probe count,
     error), counts increasing to the result. The same `seed` gives the same result whatever the `threads`
     count (0 = all cores); progress(fraction, stage) may return True to cancel (Error(CANCELLED));
-    `scene` is a Scene."""
+    `scene` is a Scene or the path of a scene file."""
     options = _placement_options(mode, spacing, margin, walk_height, target, error_bound, rays, bounces, seed,
                                  threads, light_clearance)
-    bound = _placement_bound(scene, options)
     callback = Progress(progress)
-    options.progress = callback.function
-    positions = np.empty((bound, 3), dtype=np.float32)
-    curve = np.empty((bound + 1, 2), dtype=np.float32)
-    count, points = ctypes.c_size_t(), ctypes.c_size_t()
-    status = lib.tp_place_probes(scene._live(), ctypes.byref(options), positions, bound, ctypes.byref(count),
-                                 curve, bound + 1, ctypes.byref(points))
+    with scene_argument(scene) as scene:
+        bound = _placement_bound(scene, options)
+        options.progress = callback.function
+        positions = np.empty((bound, 3), dtype=np.float32)
+        curve = np.empty((bound + 1, 2), dtype=np.float32)
+        count, points = ctypes.c_size_t(), ctypes.c_size_t()
+        status = lib.tp_place_probes(scene._live(), ctypes.byref(options), positions, bound, ctypes.byref(count),
+                                     curve, bound + 1, ctypes.byref(points))
     callback.reraise()
     check(status)
     return Placement(positions[:count.value].copy(), curve[:points.value].copy())
@@ -56,21 +56,19 @@ def _placement_options(mode, spacing, margin, walk_height, target, error_bound, 
     """place_probes' arguments as a tp_placement_options (without progress)."""
     options = _native.PlacementOptions()
     check(lib.tp_placement_options_init(ctypes.byref(options)))
-    if mode not in _MODES:
-        raise Error(Status.INVALID_ARGUMENT, "mode must be 'whole' or 'walkable' (got %r)" % (mode,))
-    for name, value in (("target", target), ("rays", rays), ("bounces", bounces), ("seed", seed), ("threads", threads)):
-        if value < 0:
-            raise Error(Status.INVALID_ARGUMENT, "%s must be >= 0 (got %d)" % (name, value))
-    options.mode = _MODES[mode]
-    options.spacing, options.margin = spacing, margin
-    options.walk_min_height, options.walk_max_height = walk_height
-    options.target_count = target
+    options.mode = choice(mode, _MODES, "mode")
+    options.spacing, options.margin = number(spacing, "spacing"), number(margin, "margin")
+    options.walk_min_height, options.walk_max_height = (float(v) for v in vector(walk_height, 2, "walk_height"))
+    options.target_count = integer(target, "target", 0, UINT32_MAX)
     if error_bound is None:
         error_bound = 0.0 if target else options.error_bound
-    options.error_bound = error_bound
-    options.rays, options.bounces, options.seed, options.threads = rays, bounces, seed, threads
+    options.error_bound = number(error_bound, "error_bound")
+    options.rays = integer(rays, "rays", 0, UINT32_MAX)
+    options.bounces = integer(bounces, "bounces", 0, UINT32_MAX)
+    options.seed = integer(seed, "seed", 0, UINT64_MAX)
+    options.threads = integer(threads, "threads", 0, UINT32_MAX)
     if light_clearance is not None:
-        options.light_clearance = light_clearance
+        options.light_clearance = number(light_clearance, "light_clearance")
     return options
 
 
@@ -84,26 +82,27 @@ def _placement_bound(scene, options):
 
 def find_inside_probes(scene, positions):
     """Indices (ascending, int64) of the probes at positions[N, 3] (float32 world units) that are inside
-    the geometry of `scene` (a Scene): behind a one-sided triangle or within a closed mesh."""
+    the geometry of `scene` (a Scene or a scene file's path): behind a one-sided triangle or within a
+    closed mesh."""
     points, stride, _ = rows(positions, 3, "positions")
     out = np.empty(points.shape[0], dtype=np.uint32)
     count = ctypes.c_size_t()
-    check(lib.tp_find_inside_probes(scene._live(), points, stride, points.shape[0], out, out.shape[0],
-                                    ctypes.byref(count)))
+    with scene_argument(scene) as scene:
+        check(lib.tp_find_inside_probes(scene._live(), points, stride, points.shape[0], out, out.shape[0],
+                                        ctypes.byref(count)))
     return out[:count.value].astype(np.int64)
 
 
 def fix_inside_probes(scene, positions, mode="drop", margin=0.1):
     """The probes at positions[N, 3] (float32 world units) with those inside the geometry of `scene` (a
-    Scene) dropped (mode "drop") or pushed out to at least `margin` (world units) from every surface
-    (mode "push", every probe kept in order) -> positions[M, 3] float32."""
-    if mode not in _FIXES:
-        raise Error(Status.INVALID_ARGUMENT, "mode must be 'drop' or 'push' (got %r)" % (mode,))
-    if not math.isfinite(margin) or margin < 0:
-        raise Error(Status.INVALID_ARGUMENT, "margin must be zero or positive (got %r)" % (margin,))
+    Scene or a scene file's path) dropped (mode "drop") or pushed out to at least `margin` (world units,
+    >= 0) from every surface (mode "push", every probe kept in order) -> positions[M, 3] float32."""
+    fix = choice(mode, _FIXES, "mode")
+    margin = number(margin, "margin")
     points, stride, _ = rows(positions, 3, "positions")
     out = np.empty((points.shape[0], 3), dtype=np.float32)
     count = ctypes.c_size_t()
-    check(lib.tp_fix_inside_probes(scene._live(), points, stride, points.shape[0], _FIXES[mode], margin, out,
-                                   out.shape[0], ctypes.byref(count)))
+    with scene_argument(scene) as scene:
+        check(lib.tp_fix_inside_probes(scene._live(), points, stride, points.shape[0], fix, margin, out,
+                                       out.shape[0], ctypes.byref(count)))
     return out[:count.value].copy()

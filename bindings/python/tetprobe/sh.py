@@ -7,30 +7,60 @@ the caller's own frame. A probe holds the projection of incoming radiance (not p
 irradiance applies the clamped-cosine convolution (pi, 2pi/3, pi/4 per band).
 """
 
+import numbers
 from ctypes import byref, c_float
 
 import numpy as np
 
-from ._arrays import as_array, vector
+from ._arrays import UINT32_MAX, as_array, choice, integer, number, vector
 from ._native import (SH_FLOATS, SH_ORDER_L1, SH_ORDER_L2, SH_ORDER_ZH3, SH_WINDOW_NONE, SH_WINDOW_NONNEGATIVE,
                       SH_WINDOW_SLOAN, ShEvalOptions, check, lib)
 
 
+def _sh_rows(sh):
+    """sh [27] or [M, 27] as contiguous float32 rows [M, 27], and whether it was a single [27]."""
+    data = np.ascontiguousarray(as_array(sh, "sh"))
+    if data.shape[-1:] != (SH_FLOATS,) or data.ndim not in (1, 2):
+        raise ValueError("sh must have shape [27] or [M, 27] (got %s)" % (np.shape(sh),))
+    return data.reshape(-1, SH_FLOATS), data.ndim == 1
+
+
+def _evaluate(function, sh, vectors, name, *options):
+    """function(sh row, vector row, *options, out row) over sh [27] or [M, 27] and vectors [3] or [M, 3]: a
+    single side is used for every row of the other. Returns float32 [3] when both are single, else [M, 3]."""
+    rows, single_sh = _sh_rows(sh)
+    directions = np.ascontiguousarray(as_array(vectors, name))
+    if directions.shape[-1:] != (3,) or directions.ndim not in (1, 2):
+        raise ValueError("%s must have shape [3] or [M, 3] (got %s)" % (name, np.shape(vectors)))
+    single_vector = directions.ndim == 1
+    directions = directions.reshape(-1, 3)
+    count = max(len(rows), len(directions))
+    if len(rows) not in (1, count) or len(directions) not in (1, count):
+        raise ValueError("sh has %d rows and %s %d; they must match or one of them be single" %
+                         (len(rows), name, len(directions)))
+    out = np.empty((count, 3), dtype=np.float32)
+    for i in range(count):
+        check(function(rows[i if len(rows) > 1 else 0], directions[i if len(directions) > 1 else 0], *options,
+                       out[i]))
+    return out[0] if single_sh and single_vector else out
+
+
 def eval_radiance(sh, direction):
-    """Radiance rgb[3] float32 arriving from unit direction[3] (pointing away from the probe) for sh[27]."""
-    out = np.empty(3, dtype=np.float32)
-    check(lib.tp_sh_eval_radiance(vector(sh, SH_FLOATS, "sh"), vector(direction, 3, "direction"),
-                                  out))
-    return out
+    """Radiance rgb float32 arriving from unit direction (pointing away from the probe) for the radiance SH sh.
+
+    sh is [27] or [M, 27] (channel-major), direction [3] or [M, 3]; a single one of them is used for every
+    row of the other. Returns [3] when both are single, else [M, 3]."""
+    return _evaluate(lib.tp_sh_eval_radiance, sh, direction, "direction")
 
 
 def eval_irradiance(sh, normal):
-    """Irradiance rgb[3] float32 on a surface with unit normal[3] lit by the radiance sh[27] (clamped-cosine
-    convolution)."""
-    out = np.empty(3, dtype=np.float32)
-    check(lib.tp_sh_eval_irradiance(vector(sh, SH_FLOATS, "sh"), vector(normal, 3, "normal"),
-                                    out))
-    return out
+    """Irradiance rgb float32 on a surface with unit normal lit by the radiance SH sh (clamped-cosine
+    convolution).
+
+    sh is [27] or [M, 27] (channel-major), normal [3] or [M, 3]; a single one of them is used for every
+    row of the other (e.g. one probe's SH under many normals, or many SH under one normal). Returns [3]
+    when both are single, else [M, 3]."""
+    return _evaluate(lib.tp_sh_eval_irradiance, sh, normal, "normal")
 
 
 def ambient(rgb, sh=None):
@@ -56,11 +86,10 @@ WINDOWS = {"none": SH_WINDOW_NONE, "sloan": SH_WINDOW_SLOAN, "nonnegative": SH_W
 
 
 def _choice(value, table, name):
-    if isinstance(value, str):
-        if value.lower() not in table:
-            raise ValueError("%s must be one of %s (got %r)" % (name, ", ".join(table), value))
-        return table[value.lower()]
-    return int(value)
+    """A name of table, or one of the C ABI's values (an int, checked by the library)."""
+    if isinstance(value, numbers.Integral) and not isinstance(value, (bool, np.bool_)):
+        return integer(value, name, 0, UINT32_MAX)
+    return choice(value, table, name)
 
 
 def eval_options(order="l2", window="none", strength=0.0):
@@ -72,15 +101,8 @@ def eval_options(order="l2", window="none", strength=0.0):
     check(lib.tp_sh_eval_options_init(byref(options)))
     options.order = _choice(order, ORDERS, "order")
     options.window = _choice(window, WINDOWS, "window")
-    options.window_strength = float(strength)
+    options.window_strength = number(strength, "strength")
     return options
-
-
-def _sh_rows(sh):
-    data = np.ascontiguousarray(as_array(sh, "sh"))
-    if data.shape[-1:] != (SH_FLOATS,) or data.ndim not in (1, 2):
-        raise ValueError("sh must have shape [27] or [M, 27] (got %s)" % (np.shape(sh),))
-    return data.reshape(-1, SH_FLOATS), data.ndim == 1
 
 
 def eval_irradiance_ex(sh, normals, order="l2", window="none", strength=0.0):
@@ -90,20 +112,7 @@ def eval_irradiance_ex(sh, normals, order="l2", window="none", strength=0.0):
     may be single and is then used for every row of the other. order, window and strength as in
     eval_options. Returns float32 [3] when both are single, else [M, 3]."""
     options = eval_options(order, window, strength)
-    rows, single_sh = _sh_rows(sh)
-    n = np.ascontiguousarray(as_array(normals, "normals"))
-    if n.shape[-1:] != (3,) or n.ndim not in (1, 2):
-        raise ValueError("normals must have shape [3] or [M, 3] (got %s)" % (np.shape(normals),))
-    single_n = n.ndim == 1
-    n = n.reshape(-1, 3)
-    count = max(len(rows), len(n))
-    if len(rows) not in (1, count) or len(n) not in (1, count):
-        raise ValueError("sh has %d rows and normals %d; they must match or one be single" % (len(rows), len(n)))
-    out = np.empty((count, 3), dtype=np.float32)
-    for i in range(count):
-        check(lib.tp_sh_eval_irradiance_ex(rows[i if len(rows) > 1 else 0], n[i if len(n) > 1 else 0],
-                                           byref(options), out[i]))
-    return out[0] if single_sh and single_n else out
+    return _evaluate(lib.tp_sh_eval_irradiance_ex, sh, normals, "normals", byref(options))
 
 
 def apply_options(sh, order="l2", window="none", strength=0.0):

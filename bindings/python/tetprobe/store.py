@@ -1,14 +1,17 @@
 """Store: a built or loaded probe store, queried in batches through the C ABI."""
 
 import ctypes
+import numbers
 import os
 
 import numpy as np
 
 from . import _native
 from ._handle import NativeHandle
-from ._arrays import Progress, as_array, rows
+from ._arrays import UINT32_MAX, UINT64_MAX, Progress, as_array, flag, integer, number, rows
+from ._arrays import path as _path_argument
 from ._native import SH_FLOATS, check, lib
+from .scene import scene_argument
 
 
 class Store(NativeHandle):
@@ -41,8 +44,9 @@ class Store(NativeHandle):
         index32=True forces 32-bit indices; merge_tolerance and flat_tolerance are fractions of the
         set's bounding-box diagonal (None = the library's defaults, 1e-6 and 1e-4); progress is a
         callable progress(fraction, stage) called on this thread that may return True to cancel
-        (Error(CANCELLED)). scene (a Scene) turns on leak control: probe pairs of a cell that cannot see
-        each other are stored and queries weigh down the probe behind the wall. occlusion[N, 4] uint8
+        (Error(CANCELLED)). scene (a Scene, or the path of a scene file, loaded for the build) turns on
+        leak control: probe pairs of a cell that cannot see each other are stored and queries weigh down
+        the probe behind the wall. occlusion[N, 4] uint8
         (bake_occlusion's output) stores occlusion probes of occlusion_lights mixed lights (the count
         bake_occlusion returns; None = all 4 channels). Raises ValueError/TypeError for a wrong shape or
         dtype, Error otherwise."""
@@ -54,50 +58,69 @@ class Store(NativeHandle):
                 raise ValueError("sh has %d rows for %d positions" % (coefficients.shape[0], points.shape[0]))
         options = _native.BuildOptions()
         check(lib.tp_build_options_init(ctypes.byref(options)))
-        options.flags = (0 if extrapolate else _native.BUILD_NO_EXTRAPOLATION) | \
-                        (_native.BUILD_INDEX32 if index32 else 0) | \
-                        (_native.BUILD_COMPACT if compact else 0)
+        options.flags = (0 if flag(extrapolate, "extrapolate") else _native.BUILD_NO_EXTRAPOLATION) | \
+                        (_native.BUILD_INDEX32 if flag(index32, "index32") else 0) | \
+                        (_native.BUILD_COMPACT if flag(compact, "compact") else 0)
         if merge_tolerance is not None:
-            options.merge_tolerance = merge_tolerance
+            options.merge_tolerance = number(merge_tolerance, "merge_tolerance")
         if flat_tolerance is not None:
-            options.flat_tolerance = flat_tolerance
-        if scene is not None:
-            options.scene = scene._live()
+            options.flat_tolerance = number(flat_tolerance, "flat_tolerance")
         occlusion_bytes = None
         if occlusion is not None:
-            occlusion_bytes = np.ascontiguousarray(occlusion, dtype=np.uint8)
+            occlusion_bytes = np.ascontiguousarray(as_array(occlusion, "occlusion", np.uint8))
             if occlusion_bytes.shape != (points.shape[0], 4):
                 raise ValueError("occlusion must be [%d, 4] uint8 (got %s)" % (points.shape[0], occlusion_bytes.shape))
             options.occlusion = occlusion_bytes.ctypes.data
             options.occlusion_stride = 4
-            options.occlusion_lights = 4 if occlusion_lights is None else int(occlusion_lights)
+            options.occlusion_lights = 4 if occlusion_lights is None else integer(occlusion_lights, "occlusion_lights",
+                                                                                  0, UINT32_MAX)
+        elif occlusion_lights is not None:
+            integer(occlusion_lights, "occlusion_lights", 0, UINT32_MAX)
         callback = Progress(progress)
         options.progress = callback.function
         handle = ctypes.c_void_p()
-        status = lib.tp_store_build(points, point_stride, coefficients, sh_stride,
-                                    points.shape[0], ctypes.byref(options), ctypes.byref(handle))
+        with scene_argument(scene, optional=True) as live_scene:
+            if live_scene is not None:
+                options.scene = live_scene._live()
+            status = lib.tp_store_build(points, point_stride, coefficients, sh_stride,
+                                        points.shape[0], ctypes.byref(options), ctypes.byref(handle))
         callback.reraise()
         check(status)
         return cls(handle.value)
 
     @classmethod
-    def load(cls, source):
+    def load(cls, source, max_file_bytes=None):
         """Loads and validates a store from source: a file path (str or os.PathLike) or the blob itself
         (bytes, bytearray or memoryview, copied). Safe for untrusted input: a bad blob raises
-        Error(INVALID_BLOB) or Error(VERSION), a missing file Error(IO)."""
+        Error(INVALID_BLOB) or Error(VERSION); a missing file, one that is not a regular file (a
+        directory, a device, a FIFO) or one larger than max_file_bytes (default 1 GiB) Error(IO)."""
+        if max_file_bytes is not None:
+            max_file_bytes = integer(max_file_bytes, "max_file_bytes", 1, UINT64_MAX)
         handle = ctypes.c_void_p()
         if isinstance(source, (bytes, bytearray, memoryview)):
             data = np.frombuffer(source, dtype=np.uint8)
             check(lib.tp_store_load(data if data.size else np.zeros(1, np.uint8), data.size, ctypes.byref(handle)))
+        elif isinstance(source, (str, os.PathLike)):
+            path = _path_argument(source, "source")
+            if max_file_bytes is None:
+                check(lib.tp_store_load_file(path, ctypes.byref(handle)))
+            else:
+                options = _native.StoreLoadOptions()
+                check(lib.tp_store_load_options_init(ctypes.byref(options)))
+                options.max_file_bytes = max_file_bytes
+                check(lib.tp_store_load_file_ex(path, ctypes.byref(options), ctypes.byref(handle)))
         else:
-            check(lib.tp_store_load_file(os.fsencode(source), ctypes.byref(handle)))
+            raise TypeError("source must be a path (str or os.PathLike) or the blob (bytes, bytearray or memoryview) "
+                            "(got %s)" % type(source).__name__)
         return cls(handle.value)
 
     # ---- blob
 
     def save(self, path):
-        """Writes the blob to path (str or os.PathLike) atomically: a temporary file, then a rename."""
-        check(lib.tp_store_save_file(self._live(), os.fsencode(path)))
+        """Writes the blob to path (str or os.PathLike) atomically: a temporary file next to it, then a
+        rename. A symbolic link is written through, an existing file keeps its permissions, and the
+        temporary file never outlives a failed save (see tp_store_save_file)."""
+        check(lib.tp_store_save_file(self._live(), _path_argument(path, "path")))
 
     def to_bytes(self):
         """The store's blob as bytes (what save writes and load reads)."""
@@ -143,7 +166,7 @@ class Store(NativeHandle):
         channel-major; the store keeps half floats, so these are the input rounded to half. A merged
         probe reads its survivor."""
         out = np.empty(SH_FLOATS, dtype=np.float32)
-        check(lib.tp_store_probe_sh(self._live(), int(probe), out))
+        check(lib.tp_store_probe_sh(self._live(), integer(probe, "probe", 0, UINT32_MAX), out))
         return out
 
     # ---- queries
@@ -165,6 +188,8 @@ class Store(NativeHandle):
         """The cell hint of a single query: -1 for None, else the one int given (a scalar or [1])."""
         if hints is None:
             return ctypes.c_int32(-1)
+        if isinstance(hints, (bool, np.bool_)):
+            raise TypeError("hints must be an int or an array of ints (got bool)")
         values = as_array(hints, "hints", np.int32).reshape(-1)
         if values.shape[0] != 1:
             raise ValueError("hints has %d entries for 1 point" % values.shape[0])
@@ -174,10 +199,7 @@ class Store(NativeHandle):
     def _batch_options(threads, chain_hints):
         options = _native.BatchOptions()
         check(lib.tp_batch_options_init(ctypes.byref(options)))
-        threads = int(threads)
-        if not 0 <= threads <= 0xFFFFFFFF:
-            raise ValueError("threads must be >= 0 (got %d)" % threads)
-        options.threads = threads
+        options.threads = integer(threads, "threads", 0, UINT32_MAX)
         options.flags = _native.BATCH_CHAIN_HINTS if chain_hints else 0
         return options
 
@@ -197,6 +219,7 @@ class Store(NativeHandle):
         occlusion[M, 4] float32 in [0, 1] (or [4] for a single point): the mixed lights' interpolated
         visibility (1 for channels without a light)."""
         data, stride, single = rows(points, 3, "points")
+        chain_hints, occlusion = flag(chain_hints, "chain_hints"), flag(occlusion, "occlusion")
         if single and not chain_hints:
             cell = self._single_hint(hints)
             out = np.empty(SH_FLOATS, dtype=np.float32)
@@ -233,6 +256,7 @@ class Store(NativeHandle):
         hints[M] (int32 cells, -1 = none), threads and chain_hints as in interpolate; a single point of
         shape [3] is one tp_store_weights call and gives (indices[4], weights[4], hint int)."""
         data, stride, single = rows(points, 3, "points")
+        chain_hints = flag(chain_hints, "chain_hints")
         if single and not chain_hints:
             cell = self._single_hint(hints)
             probes = np.empty(4, dtype=np.uint32)
@@ -252,27 +276,49 @@ class Store(NativeHandle):
         return indices, weights, cells
 
     def locate(self, point, hint=-1):
-        """Diagnostics of one query at point[3] (float32 world units) starting from cell `hint` (-1 = cold)
-        as a dict: cell, kind ("inner" or "outer"), steps (cells walked after the start), fallback
-        (True if the exhaustive search decided, outside the hull only), probes (4 input probe indices),
-        weights (4 floats), t (outer cells: the ray parameter, 0 on the hull) and hint (the cell found)."""
+        """Diagnostics of the query at point[3] or of each of points point[M, 3] (float32 world units),
+        starting from cell `hint` (an int, or hint[M] int32 for [M, 3]; -1 = cold).
+
+        For a single point, a dict: cell, kind ("inner" or "outer"), steps (cells walked after the start),
+        fallback (True if the exhaustive search decided, outside the hull only), probes (4 input probe
+        indices), weights (4 floats), t (outer cells: the ray parameter, 0 on the hull) and hint (the cell
+        found). For [M, 3], the same keys holding arrays: cell[M] int32, kind[M] str, steps[M] uint32,
+        fallback[M] bool, probes[M, 4] int64, weights[M, 4] float32, t[M] float32 and hint[M] int32 (each
+        query starts from its own hint, which is updated)."""
         data, _, single = rows(point, 3, "point")
-        if not single:
-            raise ValueError("point must have shape [3] (got %s)" % (np.shape(point),))
+        count = data.shape[0]
+        if single:
+            cells = np.array([self._single_hint(hint).value], dtype=np.int32)
+        elif isinstance(hint, numbers.Integral) and not isinstance(hint, (bool, np.bool_)):
+            cells = np.full(count, integer(hint, "hint", -2 ** 31, 2 ** 31 - 1), dtype=np.int32)
+        else:
+            cells = np.array(as_array(hint, "hint", np.int32)).reshape(-1)
+            if cells.shape[0] != count:
+                raise ValueError("hint has %d entries for %d points" % (cells.shape[0], count))
         location = _native.Location()
         location.struct_size = ctypes.sizeof(location)
-        cell = ctypes.c_int32(int(hint))
-        check(lib.tp_store_locate(self._live(), data, ctypes.byref(cell), ctypes.byref(location)))
-        return {
-            "cell": location.cell,
-            "kind": "outer" if location.cell_kind == _native.CELL_OUTER else "inner",
-            "steps": location.steps,
-            "fallback": bool(location.fallback),
-            "probes": list(location.probes),
-            "weights": list(location.weights),
-            "t": location.t,
-            "hint": cell.value,
-        }
+        found = {"cell": np.empty(count, np.int32), "kind": np.empty(count, "<U5"), "steps": np.empty(count, np.uint32),
+                 "fallback": np.empty(count, bool), "probes": np.empty((count, 4), np.int64),
+                 "weights": np.empty((count, 4), np.float32), "t": np.empty(count, np.float32)}
+        store = self._live()
+        for i in range(count):
+            cell = ctypes.c_int32(int(cells[i]))
+            check(lib.tp_store_locate(store, data[i], ctypes.byref(cell), ctypes.byref(location)))
+            cells[i] = cell.value
+            found["cell"][i] = location.cell
+            found["kind"][i] = "outer" if location.cell_kind == _native.CELL_OUTER else "inner"
+            found["steps"][i] = location.steps
+            found["fallback"][i] = bool(location.fallback)
+            found["probes"][i] = list(location.probes)
+            found["weights"][i] = list(location.weights)
+            found["t"][i] = location.t
+        found["hint"] = cells
+        if not single:
+            return found
+        return {"cell": int(found["cell"][0]), "kind": str(found["kind"][0]), "steps": int(found["steps"][0]),
+                "fallback": bool(found["fallback"][0]), "probes": found["probes"][0].tolist(),
+                "weights": [float(w) for w in found["weights"][0]], "t": float(found["t"][0]),
+                "hint": int(cells[0])}
 
     def __repr__(self):
         if not self._handle:

@@ -5,7 +5,7 @@ import ctypes
 import numpy as np
 
 from . import _native
-from ._arrays import rows, vector
+from ._arrays import number, rows, vector
 from ._native import check, lib
 
 _TYPES = {"directional": (_native.LIGHT_DIRECTIONAL, "direction"), "point": (_native.LIGHT_POINT, "position"),
@@ -17,6 +17,8 @@ def _light(light):
     or a pair ("point", xyz) / ("directional", xyz)."""
     if isinstance(light, dict):
         kind = light.get("type")
+        if not isinstance(kind, str):
+            raise TypeError("light type must be a string, one of %s (got %r)" % (sorted(_TYPES), kind))
         if kind not in _TYPES:
             raise ValueError("light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
         key = _TYPES[kind][1]
@@ -28,6 +30,8 @@ def _light(light):
             kind, value = light
         except (TypeError, ValueError):
             raise TypeError("light must be a dict or a (type, xyz) pair (got %r)" % (light,)) from None
+        if not isinstance(kind, str):
+            raise TypeError("light type must be a string, one of %s (got %r)" % (sorted(_TYPES), kind))
         if kind not in _TYPES:
             raise ValueError("light type must be one of %s (got %r)" % (sorted(_TYPES), kind))
     return _TYPES[kind][0], vector(value, 3, "light vector")
@@ -73,5 +77,5 @@ def volume_test_sphere(planes, center, radius):
     data = _planes(planes)
     hit = ctypes.c_int()
     check(lib.tp_volume_test_sphere(data, data.shape[0], vector(center, 3, "center"),
-                                    float(radius), ctypes.byref(hit)))
+                                    number(radius, "radius"), ctypes.byref(hit)))
     return bool(hit.value)

@@ -1,0 +1,165 @@
+#include "core/cell_order.h"
+
+#include "core/store_format.h"
+
+#include <algorithm>
+#include <cstddef>
+#include <numeric>
+#include <tuple>
+#include <utility>
+
+namespace tetprobe {
+
+namespace {
+
+uint64_t spread_bits(uint64_t x) {
+    x &= 0x1FFFFFull;
+    x = (x | (x << 32)) & 0x001F00000000FFFFull;
+    x = (x | (x << 16)) & 0x001F0000FF0000FFull;
+    x = (x | (x << 8)) & 0x100F00F00F00F00Full;
+    x = (x | (x << 4)) & 0x10C30C30C30C30C3ull;
+    x = (x | (x << 2)) & 0x1249249249249249ull;
+    return x;
+}
+
+// Stable LSD radix sort of indices by a 32-bit key (three 11-bit passes, no comparisons).
+void radix_sort_by_key(std::vector<uint32_t>& keys, std::vector<uint32_t>& items) {
+    std::vector<uint32_t> key_buffer(keys.size()), item_buffer(items.size());
+    std::vector<uint32_t> counts(2049);
+    for (int shift = 0; shift < 32; shift += 11) {
+        std::fill(counts.begin(), counts.end(), 0u);
+        for (uint32_t k : keys) ++counts[((k >> shift) & 0x7FFu) + 1];
+        for (int b = 0; b < 2048; ++b) counts[size_t(b) + 1] += counts[size_t(b)];
+        for (size_t i = 0; i < keys.size(); ++i) {
+            const uint32_t to = counts[(keys[i] >> shift) & 0x7FFu]++;
+            key_buffer[to] = keys[i];
+            item_buffer[to] = items[i];
+        }
+        keys.swap(key_buffer);
+        items.swap(item_buffer);
+    }
+}
+
+// Within each run of equal keys (after a stable sort), orders the cells by their vertex slots.
+void order_equal_keys_by_vertices(const std::vector<uint32_t>& keys, std::vector<uint32_t>& items,
+                                  const std::vector<uint32_t>& cell_vertices) {
+    auto slots = [&](uint32_t c) {
+        const uint32_t* v = &cell_vertices[size_t(c) * 4];
+        return std::tie(v[0], v[1], v[2], v[3]);
+    };
+    for (size_t i = 0; i < keys.size();) {
+        size_t j = i + 1;
+        while (j < keys.size() && keys[j] == keys[i]) ++j;
+        if (j - i > 1)
+            std::sort(items.begin() + ptrdiff_t(i), items.begin() + ptrdiff_t(j),
+                      [&](uint32_t a, uint32_t b) { return slots(a) < slots(b); });
+        i = j;
+    }
+}
+
+}  // namespace
+
+uint64_t morton_code(const double p[3], const double lo[3], const double hi[3]) {
+    uint64_t code = 0;
+    for (int a = 0; a < 3; ++a) {
+        const double extent = hi[a] - lo[a];
+        double f = extent > 0 ? (p[a] - lo[a]) / extent : 0.0;
+        f = std::min(std::max(f, 0.0), 1.0);
+        code |= spread_bits(uint64_t(f * double(0x1FFFFF))) << a;
+    }
+    return code;
+}
+
+std::vector<uint32_t> curve_order(const std::vector<Eigen::Vector3d>& points, const Eigen::Vector3d& lo,
+                                  const Eigen::Vector3d& hi) {
+    std::vector<uint64_t> codes(points.size());
+    for (size_t i = 0; i < points.size(); ++i) codes[i] = morton_code(points[i].data(), lo.data(), hi.data());
+    std::vector<uint32_t> order(points.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+        const Eigen::Vector3d &p = points[a], &q = points[b];
+        return std::tie(codes[a], p.x(), p.y(), p.z(), a) < std::tie(codes[b], q.x(), q.y(), q.z(), b);
+    });
+    return order;
+}
+
+void order_cells_for_locality(StoreData& data) {
+    const uint32_t cells = data.cell_count(), inner = data.inner_cell_count;
+    double lo[3], scale[3], centre[3];
+    for (int a = 0; a < 3; ++a) {
+        lo[a] = data.bounds_min[a];
+        const double extent = double(data.bounds_max[a]) - lo[a];
+        scale[a] = extent > 0 ? double(0x1FFFFF) / extent : 0.0;  // a flat axis quantises to 0
+        centre[a] = 0.5 * (lo[a] + double(data.bounds_max[a]));
+    }
+
+    // Keys: the top 32 bits of the Morton code of each cell's centroid quantised to 21 bits per axis
+    // (about 1/2000 of the bounds per axis, finer than any walk cares about). Plain IEEE arithmetic
+    // (no library functions), so a loader on another platform computes the same keys.
+    const float* positions = data.positions.data();
+    const uint32_t* slots = data.cell_vertices.data();
+    std::vector<uint32_t> keys(cells), old_of_new(cells);
+    std::vector<double> distance(inner);
+    const uint32_t corners_inner = data.dimension + 1, corners_outer = data.dimension;
+    const double inverse_inner = 1.0 / corners_inner, inverse_outer = corners_outer ? 1.0 / corners_outer : 0.0;
+    for (uint32_t c = 0; c < cells; ++c) {
+        const uint32_t* v = slots + size_t(c) * 4;
+        const uint32_t corners = c < inner ? corners_inner : corners_outer;
+        const double inverse = c < inner ? inverse_inner : inverse_outer;
+        double sum[3] = {0, 0, 0};
+        for (uint32_t k = 0; k < corners; ++k) {
+            const float* p = positions + size_t(v[k]) * 3;
+            sum[0] += p[0];
+            sum[1] += p[1];
+            sum[2] += p[2];
+        }
+        uint64_t code = 0;
+        double centroid[3];
+        for (int a = 0; a < 3; ++a) {
+            centroid[a] = sum[a] * inverse;
+            double f = (centroid[a] - lo[a]) * scale[a];
+            f = f < 0 ? 0 : f > double(0x1FFFFF) ? double(0x1FFFFF) : f;
+            code |= spread_bits(uint64_t(f)) << a;
+        }
+        keys[c] = uint32_t(code >> 31);
+        old_of_new[c] = c;
+        if (c < inner) {
+            distance[c] = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
+                          (centroid[1] - centre[1]) * (centroid[1] - centre[1]) +
+                          (centroid[2] - centre[2]) * (centroid[2] - centre[2]);
+        }
+    }
+    std::vector<uint32_t> inner_keys(keys.begin(), keys.begin() + inner), outer_keys(keys.begin() + inner, keys.end());
+    std::vector<uint32_t> inner_order(old_of_new.begin(), old_of_new.begin() + inner);
+    std::vector<uint32_t> outer_order(old_of_new.begin() + inner, old_of_new.end());
+    radix_sort_by_key(inner_keys, inner_order);
+    radix_sort_by_key(outer_keys, outer_order);
+    // Cells with equal keys (and equally near the centre below) go by their vertex slots, so the order
+    // depends only on which cells there are.
+    order_equal_keys_by_vertices(inner_keys, inner_order, data.cell_vertices);
+    order_equal_keys_by_vertices(outer_keys, outer_order, data.cell_vertices);
+    std::copy(inner_order.begin(), inner_order.end(), old_of_new.begin());
+    std::copy(outer_order.begin(), outer_order.end(), old_of_new.begin() + inner);
+    // The inner cell nearest the centre (the first in this order among equally near ones) to slot 0.
+    uint32_t nearest = 0;
+    for (uint32_t n = 1; n < inner; ++n)
+        if (distance[old_of_new[n]] < distance[old_of_new[nearest]]) nearest = n;
+    if (inner > 0) std::swap(old_of_new[0], old_of_new[nearest]);
+
+    std::vector<uint32_t> new_of_old(cells);
+    for (uint32_t n = 0; n < cells; ++n) new_of_old[old_of_new[n]] = n;
+
+    std::vector<uint32_t> vertices(data.cell_vertices.size()), neighbours(data.cell_neighbours.size());
+    for (uint32_t n = 0; n < cells; ++n) {
+        const uint32_t o = old_of_new[n];
+        for (size_t k = 0; k < 4; ++k) {
+            vertices[size_t(n) * 4 + k] = data.cell_vertices[size_t(o) * 4 + k];
+            const uint32_t link = data.cell_neighbours[size_t(o) * 4 + k];
+            neighbours[size_t(n) * 4 + k] = link < cells ? new_of_old[link] : link;
+        }
+    }
+    data.cell_vertices = std::move(vertices);
+    data.cell_neighbours = std::move(neighbours);
+}
+
+}  // namespace tetprobe
