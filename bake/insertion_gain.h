@@ -25,7 +25,7 @@
 namespace tetprobe {
 
 // Standard deviations by which a gain must exceed zero to be trusted.
-constexpr double kSignificance = 2.0;
+constexpr double kSignificance = 1.0;
 
 // What one round knows: the store of the chosen probes and, per candidate, where it falls and how far
 // the interpolation is from its value.

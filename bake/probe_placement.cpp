@@ -74,7 +74,8 @@ Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
     const std::string tested = std::to_string(found.tested) + " points tested" +
                                (found.unreached ? ", " + std::to_string(found.unreached) + " unreachable from the playable seeds" : "");
     if (count < kLeastCandidates) {
-        const std::string what = count == 0 ? "no candidate passes" : "only " + std::to_string(count) + " candidates pass";
+        const std::string what = count == 0 ? "no candidate passes"
+                               : "only " + std::to_string(count) + (count == 1 ? " candidate passes" : " candidates pass");
         throw Error(Status::degenerate,
                     what + " the rules (spacing " + number(settings.rules.spacing) + ", " + tested + "): every point is inside geometry, " +
                         "closer than the margin to a surface" +

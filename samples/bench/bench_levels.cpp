@@ -22,8 +22,10 @@
 //        "levels": [{<level fields of levels.json>, "candidates": int, "placement_seconds": float,
 //                    "placement_progress_calls": int, "curve": [[probes, error]],
 //                    "all": {"rms", "rms_leak": float},
-//                    "counts": [{"probes": int, "placed", "placed_leak", "random", "lattice", "reported": float}]}]}
-//       (errors: RMS of the metric; reported: the placement's curve at that count, NaN written as null).
+//                    "counts": [{"probes": int, "placed", "placed_leak", "random", "lattice", "reported": float,
+//                                "p95": {"placed", "random", "lattice": float}}]}]}
+//       (errors: RMS of the metric, p95 its 95th percentile; reported: the placement's curve at that count, NaN
+//       written as null).
 //   tetprobe_bench levels prepare --level NAME...   only prepares (and caches) the levels
 //   tetprobe_bench levels survey                    every level of --maps: triangles, lights, spawns, size
 //
@@ -438,22 +440,26 @@ Json run_level_placement(const LevelArgs& a, const std::string& name, const Leve
         if (n > largest) continue;
         const std::vector<float> placed(run.positions.begin(), run.positions.begin() + 3 * std::ptrdiff_t(n));
         const std::vector<float> placed_sh = sh_of(level, candidates, placed, settings);
-        const double placed_rms = evaluate_tetprobe(level, placed, placed_sh, plain).error.rms;
+        const LevelError placed_error = evaluate_tetprobe(level, placed, placed_sh, plain).error;
+        const double placed_rms = placed_error.rms;
         const double leak_rms = evaluate_tetprobe(level, placed, placed_sh, leak).error.rms;
         std::vector<float> p, sh;
-        double random_rms = 0;
+        double random_rms = 0, random_p95 = 0;
         for (int seed = 0; seed < kRandomSeeds; ++seed) {
             subset(random_pick(candidate_count, n, 100 + uint64_t(seed)), &p, &sh);
-            random_rms += evaluate_tetprobe(level, p, sh, plain).error.rms / kRandomSeeds;
+            const LevelError e = evaluate_tetprobe(level, p, sh, plain).error;
+            random_rms += e.rms / kRandomSeeds, random_p95 += e.p95 / kRandomSeeds;
         }
         subset(lattice_pick(candidates.positions, n), &p, &sh);
-        const double lattice_rms = evaluate_tetprobe(level, p, sh, plain).error.rms;
+        const LevelError lattice_error = evaluate_tetprobe(level, p, sh, plain).error;
+        const double lattice_rms = lattice_error.rms;
         const double reported = curve_error_at(run.curve, n);
         std::printf("| %u | %.4f | %.4f | %.4f | %.4f | %.3f | %.3f | %.4f | %.3f |\n", n, placed_rms, leak_rms, random_rms,
                     lattice_rms, placed_rms / random_rms, placed_rms / lattice_rms, reported, reported / placed_rms);
         std::fflush(stdout);
         counts.push_back({{"probes", n}, {"placed", placed_rms}, {"placed_leak", leak_rms}, {"random", random_rms},
-                          {"lattice", lattice_rms}, {"reported", nullable(reported)}});
+                          {"lattice", lattice_rms}, {"reported", nullable(reported)},
+                          {"p95", {{"placed", placed_error.p95}, {"random", random_p95}, {"lattice", lattice_error.p95}}}});
     }
     const double all_rms = evaluate_tetprobe(level, candidates.positions, candidates.sh, plain).error.rms;
     const double all_leak = evaluate_tetprobe(level, candidates.positions, candidates.sh, leak).error.rms;
