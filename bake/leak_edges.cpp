@@ -85,6 +85,12 @@ size_t add_leak_edges(const Scene& scene, StoreData& data, uint32_t threads, con
     run_jobs(pairs.size(), threads, [&](size_t k) {
         const float* a = &data.positions[3 * size_t(pairs[k].first)];
         const float* b = &data.positions[3 * size_t(pairs[k].second)];
+        double squared = 0;
+        for (int q = 0; q < 3; ++q) squared += (double(b[q]) - a[q]) * (double(b[q]) - a[q]);
+        if (!(squared <= kLeakLongestPair * kLeakLongestPair)) {
+            hits[k] = {-1.0, -1.0};
+            return;
+        }
         hits[k] = {first_hit(caster, a, b), first_hit(caster, b, a)};
         if ((hits[k].first >= 0 || hits[k].second >= 0) && !separated(caster, a, b)) hits[k] = {-1.0, -1.0};
     }, progress, "leak control");

@@ -385,3 +385,29 @@ TEST_CASE("leak: the blocked pairs do not depend on the thread count, and the bu
         CHECK(std::string(e.what()) == "cancelled by the progress callback during leak control");
     }
 }
+
+TEST_CASE("leak: pairs farther apart than kLeakLongestPair are not flagged, nearer ones across the wall are",
+          "[leak]") {
+    // Two probes either side of the wall at each distance, two more off to the side so that there is a volume:
+    // the wall-crossing pair is flagged exactly when it is at most kLeakLongestPair apart.
+    const Scene scene = wall_scene();
+    for (double half : {0.5, 1.4, 1.6, 3.0}) {
+        const double d = 2 * half;
+        const std::vector<float> probes = {float(kWallX - half), -1.0f, 0.0f, float(kWallX + half), -1.0f, 0.0f,
+                                           float(kWallX - half), -1.0f, 1.5f, float(kWallX - half), -2.5f, -1.0f};
+        BuildSettings settings;
+        settings.scene = &scene;
+        const StoreData data = build_store_data(probes.data(), 12, nullptr, 12, 4, settings);
+        // The stored order is canonical: find the pair by position.
+        uint32_t a = 4, b = 4;
+        for (uint32_t p = 0; p < 4; ++p) {
+            const double x = data.positions[3 * p] + data.origin[0], y = data.positions[3 * p + 1] + data.origin[1];
+            const double z = data.positions[3 * p + 2] + data.origin[2];
+            if (std::fabs(y + 1.0) < 1e-4 && std::fabs(z) < 1e-4) (x < kWallX ? a : b) = p;
+        }
+        REQUIRE(a < 4);
+        REQUIRE(b < 4);
+        INFO("pair " << d << " apart");
+        CHECK(blocked(data, a, b) == (d <= kLeakLongestPair));
+    }
+}
