@@ -123,7 +123,8 @@ typedef struct tp_build_options {
     size_t occlusion_stride;
     uint32_t occlusion_lights;   /* mixed lights the bytes cover, 1..4 (ignored without occlusion) */
     /** Leak control: with a scene, probe pairs of a cell that cannot see each other (an Embree ray each way
-        between them hits the scene) are stored, and queries weigh down the probe behind the wall (see
+        between them hits the scene, and so do four segments beside it: a surface separates them) and are at
+        most 3 world units (metres) apart are stored, and queries weigh down the probe behind the wall (see
         tp_store_interpolate). NULL = none. Bake-time library only. */
     const struct tp_scene* scene;
 } tp_build_options;
