@@ -31,6 +31,34 @@ double first_hit(const RayCaster& caster, const float from[3], const float to[3]
     return std::min(1.0, double(hit.distance) / length);
 }
 
+// Whether a surface separates a and b rather than grazes their segment: the four segments parallel to
+// it, kLeakSeparationOffset of its length away across it and above and below it, are blocked too. A
+// step in a floor or the edge of a wall blocks the segment between two probes that see the same light,
+// and hiding one from the other then only moves the weight to probes that represent the query worse; a
+// wall or a floor between storeys blocks the parallel segments as well.
+bool separated(const RayCaster& caster, const float a[3], const float b[3]) {
+    double d[3], length = 0;
+    for (int k = 0; k < 3; ++k) d[k] = double(b[k]) - a[k], length += d[k] * d[k];
+    length = std::sqrt(length);
+    if (!(length > 0)) return false;
+    for (double& c : d) c /= length;
+    // u across the segment (horizontal unless the segment is vertical), v completes the frame.
+    double u[3] = {-d[2], 0.0, d[0]};
+    double n = std::sqrt(u[0] * u[0] + u[2] * u[2]);
+    if (n < 1e-6) u[0] = 1, u[1] = 0, u[2] = 0, n = 1;
+    for (double& c : u) c /= n;
+    const double v[3] = {d[1] * u[2] - d[2] * u[1], d[2] * u[0] - d[0] * u[2], d[0] * u[1] - d[1] * u[0]};
+    const double r = kLeakSeparationOffset * length;
+    const double offsets[4][3] = {{r * u[0], r * u[1], r * u[2]}, {-r * u[0], -r * u[1], -r * u[2]},
+                                  {r * v[0], r * v[1], r * v[2]}, {-r * v[0], -r * v[1], -r * v[2]}};
+    for (const auto& o : offsets) {
+        float from[3], to[3];
+        for (int k = 0; k < 3; ++k) from[k] = float(a[k] + o[k]), to[k] = float(b[k] + o[k]);
+        if (first_hit(caster, from, to) < 0 && first_hit(caster, to, from) < 0) return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 size_t add_leak_edges(const Scene& scene, StoreData& data, uint32_t threads, const Progress& progress) {
@@ -51,12 +79,20 @@ size_t add_leak_edges(const Scene& scene, StoreData& data, uint32_t threads, con
 
     const RayCaster caster(scene, data.origin);
     const uint32_t probes = data.probe_count();
-    // The first hit from each end of every pair, found on worker threads; kept in the pairs' order.
+    // The first hit from each end of every pair (none for a pair no surface separates), found on worker
+    // threads; kept in the pairs' order.
     std::vector<std::pair<double, double>> hits(pairs.size());
     run_jobs(pairs.size(), threads, [&](size_t k) {
         const float* a = &data.positions[3 * size_t(pairs[k].first)];
         const float* b = &data.positions[3 * size_t(pairs[k].second)];
+        double squared = 0;
+        for (int q = 0; q < 3; ++q) squared += (double(b[q]) - a[q]) * (double(b[q]) - a[q]);
+        if (!(squared <= kLeakLongestPair * kLeakLongestPair)) {
+            hits[k] = {-1.0, -1.0};
+            return;
+        }
         hits[k] = {first_hit(caster, a, b), first_hit(caster, b, a)};
+        if ((hits[k].first >= 0 || hits[k].second >= 0) && !separated(caster, a, b)) hits[k] = {-1.0, -1.0};
     }, progress, "leak control");
     std::vector<LeakEdge> edges;
     std::vector<uint32_t> owners;

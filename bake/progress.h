@@ -5,7 +5,7 @@
 
 namespace tetprobe {
 
-// Returns non-zero to cancel. fraction is in [0, 1]; stage names the work ("bake", "prune", ...).
+// Returns non-zero to cancel. fraction is in [0, 1]; stage names the work ("bake", "select", ...).
 using ProgressCallback = int (*)(void* user, float fraction, const char* stage);
 
 struct Progress {

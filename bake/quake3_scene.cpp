@@ -40,6 +40,8 @@ void add_quake3_level(Scene& scene, const Quake3Level& level) {
     for (int k = 0; k < 3; ++k) sun.color[k] = kQuake3SunColor[k], sun.direction[k] = float(-toward_sun[k]);
     scene.add_light(sun, level.name + ": sun");
     scene.set_sky_color(kQuake3SkyRadiance);
+    // Spawn points are where players stand: automatic placement keeps to the space they reach.
+    if (!level.spawn_points.empty()) scene.set_playable_seeds(level.spawn_points.data(), level.spawn_points.size() / 3);
 }
 
 Scene load_quake3_scene(const std::string& path) {

@@ -15,6 +15,7 @@
 // - Sun: a directional light of irradiance kQuake3SunIrradiance and colour kQuake3SunColor, from
 //   kQuake3SunElevationDegrees above the horizon; sky: constant radiance kQuake3SkyRadiance. They
 //   reach the level only through the left-out sky faces.
+// - Spawn points: the scene's playable seeds (automatic placement stays in the space they reach).
 #pragma once
 
 #include "bake/quake3_bsp.h"

@@ -207,6 +207,17 @@ void Scene::set_probes(const float* positions, size_t count, size_t stride_bytes
     probes_ = std::move(probes);
 }
 
+void Scene::set_playable_seeds(const float* positions, size_t count, size_t stride_bytes) {
+    if (stride_bytes == 0) stride_bytes = 3 * sizeof(float);
+    std::vector<float> seeds(3 * count);
+    for (size_t i = 0; i < count; ++i) {
+        const float* p = reinterpret_cast<const float*>(reinterpret_cast<const char*>(positions) + i * stride_bytes);
+        if (!finite3(p)) scene_error("playable seed " + std::to_string(i), "position " + triple(p) + " is not finite");
+        std::copy(p, p + 3, &seeds[3 * i]);
+    }
+    playable_seeds_ = std::move(seeds);
+}
+
 void Scene::set_up(UpAxis up) {
     if (!is_axis(up))
         throw Error(Status::invalid_argument, "up must be one of the six axis directions (TP_UP_POS_X ... TP_UP_NEG_Z), got " +
@@ -228,6 +239,8 @@ Scene Scene::meshes_turned(const AxisTurn& turn) const {
         }
     }
     turned.up_ = turn.apply(up_);
+    turned.playable_seeds_ = playable_seeds_;
+    for (size_t s = 0; s < turned.playable_seeds_.size(); s += 3) turn.apply(&turned.playable_seeds_[s], &turned.playable_seeds_[s]);
     return turned;
 }
 

@@ -103,6 +103,9 @@ public:
     void set_sky_color(const float rgb[3]);
     void set_sky_sh(const float sh[27]);
     void set_probes(const float* positions, size_t count, size_t stride_bytes = 0);
+    // Points known to be in the playable space (a level's spawn points): automatic placement keeps only
+    // candidates connected to them (bake/placement_candidates.h). 3 floats each, world; finite.
+    void set_playable_seeds(const float* positions, size_t count, size_t stride_bytes = 0);
     // Which way is up (+y unless set): placement's walkable mode stands probes along it. Throws
     // Error(Status::invalid_argument) for anything but one of the six axis directions.
     void set_up(UpAxis up);
@@ -114,14 +117,15 @@ public:
     const Sky& sky() const { return sky_; }
     const std::vector<float>& probes() const { return probes_; }
     size_t probe_count() const { return probes_.size() / 3; }
+    const std::vector<float>& playable_seeds() const { return playable_seeds_; }
     UpAxis up() const { return up_; }
     const std::vector<std::string>& notes() const { return notes_; }
     uint32_t dropped_triangles() const;
     uint32_t mixed_light_count() const;
     // True when there is nothing that emits light or occludes it: no mesh, no light, no sky.
     bool empty() const { return meshes_.empty() && lights_.empty() && sky_.kind == SkyKind::none; }
-    // The same meshes turned exactly by `turn` (their bounds too), and up turned with them; no lights,
-    // sky, probes or notes: what geometric tests (placement's floors) read in another frame.
+    // The same meshes turned exactly by `turn` (their bounds too), and up and the playable seeds turned with
+    // them; no lights, sky, probes or notes: what geometric tests (placement's floors) read in another frame.
     Scene meshes_turned(const AxisTurn& turn) const;
 
 private:
@@ -129,6 +133,7 @@ private:
     std::vector<Light> lights_;
     Sky sky_;
     std::vector<float> probes_;
+    std::vector<float> playable_seeds_;
     UpAxis up_ = UpAxis::pos_y;
     std::vector<std::string> notes_;
 };

@@ -115,6 +115,12 @@ TP_API tp_status tp_scene_set_probes(tp_scene*, const float*, size_t) {
     TP_API_END
 }
 
+TP_API tp_status tp_scene_set_playable_seeds(tp_scene*, const float*, size_t) {
+    TP_API_BEGIN
+    return unavailable("tp_scene_set_playable_seeds");
+    TP_API_END
+}
+
 TP_API tp_status tp_bake_plan(const tp_scene*, const float*, size_t, size_t, const tp_bake_options*, tp_effects_plan*,
                               char* text, size_t text_capacity) {
     TP_API_BEGIN

@@ -9,6 +9,7 @@
 #include "bake/probe_placement.h"
 
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <string>
 #include <vector>
@@ -23,6 +24,9 @@ tp_status read_positions(const float* positions, size_t stride, size_t count, st
     return TP_OK;
 }
 
+// The struct before light_clearance was added: a caller built against it gets that field's default.
+constexpr size_t kFirstPlacementOptionsSize = offsetof(tp_placement_options, light_clearance);
+
 static_assert(TP_PLACEMENT_WHOLE == uint32_t(tetprobe::PlacementMode::whole) &&
                   TP_PLACEMENT_WALKABLE == uint32_t(tetprobe::PlacementMode::walkable),
               "TP_PLACEMENT_* must equal PlacementMode");
@@ -30,11 +34,12 @@ static_assert(TP_PLACEMENT_WHOLE == uint32_t(tetprobe::PlacementMode::whole) &&
 // The one reading of tp_placement_options.
 tp_status read_placement_options(const tp_placement_options* options, tetprobe::PlacementSettings& settings) {
     if (!options) return TP_OK;
-    if (options->struct_size < sizeof(tp_placement_options))
+    if (options->struct_size < kFirstPlacementOptionsSize)
         return fail(TP_ERROR_INVALID_ARGUMENT, "options->struct_size is not set (call tp_placement_options_init)");
     if (options->mode != TP_PLACEMENT_WHOLE && options->mode != TP_PLACEMENT_WALKABLE)
         return fail(TP_ERROR_INVALID_ARGUMENT, "unknown placement mode " + std::to_string(options->mode));
-    if (options->rays == 0) return fail(TP_ERROR_INVALID_ARGUMENT, "options->rays must be at least 1");
+    if (options->rays < 2)
+        return fail(TP_ERROR_INVALID_ARGUMENT, "options->rays must be at least 2 (the candidates are baked in two halves)");
     settings.rules.mode = static_cast<tetprobe::PlacementMode>(options->mode);
     settings.rules.spacing = options->spacing;
     settings.rules.margin = options->margin;
@@ -47,6 +52,8 @@ tp_status read_placement_options(const tp_placement_options* options, tetprobe::
     settings.seed = options->seed;
     settings.threads = options->threads;
     settings.progress = tetprobe::progress_from_c(options->progress, options->progress_user);
+    if (options->struct_size >= offsetof(tp_placement_options, light_clearance) + sizeof(float))
+        settings.light_clearance = options->light_clearance;
     return TP_OK;
 }
 

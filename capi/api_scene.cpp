@@ -188,6 +188,15 @@ TP_API tp_status tp_scene_set_probes(tp_scene* scene, const float* positions, si
     TP_API_END
 }
 
+TP_API tp_status tp_scene_set_playable_seeds(tp_scene* scene, const float* positions, size_t count) {
+    TP_API_BEGIN
+    TP_REQUIRE_NOT_NULL(scene);
+    if (count > 0) TP_REQUIRE_NOT_NULL(positions);
+    scene->scene.set_playable_seeds(positions, count);
+    return TP_OK;
+    TP_API_END
+}
+
 TP_API tp_status tp_bake_plan(const tp_scene* scene, const float* positions, size_t position_stride,
                               size_t count, const tp_bake_options* options, tp_effects_plan* plan,
                               char* text, size_t text_capacity) {

@@ -35,6 +35,7 @@ inline tp_placement_options default_placement_options() {
     options.error_bound = kDefaultPlacementErrorBound;
     options.rays = kDefaultPlacementRays;
     options.bounces = kDefaultBakeBounces;
+    options.light_clearance = kDefaultPlacementLightClearance;
     return options;
 }
 

@@ -145,7 +145,8 @@ typedef struct tp_build_options {
     size_t occlusion_stride;
     uint32_t occlusion_lights;   /* mixed lights the bytes cover, 1..4 (ignored without occlusion) */
     /** Leak control: with a scene, probe pairs of a cell that cannot see each other (an Embree ray each way
-        between them hits the scene) are stored, and queries weigh down the probe behind the wall (see
+        between them hits the scene, and so do four segments beside it: a surface separates them) and are at
+        most 3 world units (metres) apart are stored, and queries weigh down the probe behind the wall (see
         tp_store_interpolate). NULL = none. Bake-time library only. */
     const struct tp_scene* scene;
     /** Format 5: TP_SH_ENCODING_* (default HALF). */
@@ -634,6 +635,11 @@ TP_API tp_status tp_scene_probes(const tp_scene* scene, const float** out_positi
 /** Sets the scene's probe positions (copied). */
 TP_API tp_status tp_scene_set_probes(tp_scene* scene, const float* positions, size_t count);
 
+/** Sets the scene's playable seeds (copied; count 0 clears them): points known to be where objects go,
+    such as spawn points. Automatic placement then keeps only candidates connected to a seed (see
+    tp_place_probes). A Quake 3 level loaded with tp_scene_load_file has its spawn points as seeds. */
+TP_API tp_status tp_scene_set_playable_seeds(tp_scene* scene, const float* positions, size_t count);
+
 #define TP_BAKE_NO_CULLING 1u     /* test aid: every mesh occludes every light (no shadow caster culling) */
 
 typedef struct tp_bake_options {
@@ -703,51 +709,63 @@ TP_API tp_status tp_bake_occlusion(const tp_scene* scene, const float* positions
 
 #define TP_PLACEMENT_WHOLE 0u    /* candidates fill the scene's bounds */
 #define TP_PLACEMENT_WALKABLE 1u /* candidates stand across a height band above every upward-facing surface (up is
-                                    the scene's, tp_scene_up), in columns of the grid */
+                                    the scene's, tp_scene_up), in columns of the lattice */
 
 typedef struct tp_placement_options {
     uint32_t struct_size;
     uint32_t mode;               /* TP_PLACEMENT_* (default WHOLE) */
-    float spacing;               /* candidate grid spacing, world units (default 1); must be positive */
+    float spacing;               /* candidate lattice spacing, world units (default 1); must be positive */
     float margin;                /* least distance of a probe from every surface (default 0.1) */
     float walk_min_height;       /* walkable: the band above the floor (default 0 to 2) */
     float walk_max_height;
-    /** Pruning stops at this many probes (0 = no target, the default); set error_bound to 0 as well to
+    /** Placement stops at this many probes (0 = no target, the default); set error_bound to 0 as well to
         reach it whatever the error. */
     uint32_t target_count;
-    /** Pruning never lets the error exceed this (default 0.05; 0 = no bound). The error: at each held-out
-        point (between the grid's, and every candidate's own) the RMS over every normal and the three
-        channels of the change of the interpolated irradiance, relative to what all candidates
-        interpolate there; then the RMS over the points. Without a target and a bound nothing is pruned
-        (the candidates are returned). */
+    /** Without a target, placement stops at the fewest probes whose estimated error is at most this
+        (default 0.25; 0 = no bound). The error: at validation points (free points of the candidates'
+        volume, never chosen), the RMS over points and the 6 axis normals of |interpolated - baked|
+        luminance irradiance, relative to the mean baked there, with the low-ray bake's noise taken out
+        (an estimate of the error against a noise-free bake). Without a target and a bound nothing is
+        chosen: every candidate is returned, unbaked. */
     float error_bound;
-    uint32_t rays;               /* rays per candidate of the low-sample bake that pruning compares (default 128) */
+    uint32_t rays;               /* rays per candidate of the low-sample bake (default 128, at least 2: two halves) */
     uint32_t bounces;            /* as tp_bake_options (default 2) */
     uint64_t seed;               /* the same seed gives the same bytes whatever the thread count */
     uint32_t threads;            /* 0 = all cores */
-    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "prune", "done" */
+    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "select", "done" */
     void* progress_user;
+    /** Points closer than this to a point or spot light do not count in the error and are chosen last
+        (world units, default 1; 0 = every point counts): the light's inverse-square peak there is no
+        interpolation's to follow. An older caller's struct that ends before it gets the default. */
+    float light_clearance;
 } tp_placement_options;
 
 /** Fills defaults and struct_size. */
 TP_API tp_status tp_placement_options_init(tp_placement_options* options);
 
 /** Upper bound of the probes (and of the error curve's points) tp_place_probes returns for these
-    options: the candidates before the inside and margin tests (the grid's size; in the walkable mode the
-    columns' floors times the band's layers, found with a few rays per column). Fails as tp_place_probes
-    does on bad options (spacing, margin larger than the scene, too many grid points). */
+    options: the points the inside and margin tests are applied to (the lattice's size; in the walkable
+    mode the columns' floors times the band's layers, found with a few rays per column). Fails as
+    tp_place_probes does on bad options (spacing, margin larger than the scene, too many points). */
 TP_API tp_status tp_place_probes_bound(const tp_scene* scene, const tp_placement_options* options, size_t* out_bound);
 
-/** Places probes: candidates on a grid (options->mode), none inside geometry or closer than the margin
-    to a surface, baked with options->rays, then pruned greedily (the probe whose removal changes the
-    interpolated irradiance least, estimated from its Delaunay neighbours, in batches of non-adjacent
-    probes, measured on a rebuilt store after each batch) down to target_count or up to error_bound.
-    out_positions receives 3 floats per probe (room for capacity probes); out_error_curve (may be NULL)
-    2 floats per point, (probe count, error), from all candidates (error 0) down, room for
-    curve_capacity points. *out_count and *out_curve_points (may be NULL) receive the counts, also with
-    TP_ERROR_BUFFER_TOO_SMALL, when nothing is written; size both with tp_place_probes_bound. Errors: a
-    target above the candidates (TP_ERROR_INVALID_ARGUMENT), no candidate left (TP_ERROR_DEGENERATE), no
-    mesh or nothing with an inside (TP_ERROR_SCENE); cancelling writes nothing. */
+/** Places probes. Candidates on a lattice (options->mode), none inside geometry or closer than the margin
+    to a surface and, when the scene has playable seeds (tp_scene_set_playable_seeds; a Quake 3 level's
+    spawn points), only those connected to a seed; memory grows with the candidates, not with the scene's
+    bounds. They are baked with options->rays in two halves (the difference measures the bake's noise),
+    then chosen by greedy insertion: from a few far-apart candidates, rounds add, per cell of the current
+    probes, the candidate whose insertion lowers the squared error summed over the held-out candidates
+    most (noise taken out; where no gain stands out from the noise, the one that takes over the most
+    volume), in batches of candidates whose changes do not overlap, until target_count or error_bound.
+    out_positions receives 3 floats per probe in the order chosen: the first k of them are the placement
+    for k probes. out_error_curve (may be NULL) receives 2 floats per point, (probe count, estimated
+    error, see error_bound), one per round with counts increasing and the last at the result; no points
+    when nothing is chosen. Room: capacity probes and curve_capacity points. *out_count and
+    *out_curve_points (may be NULL) receive the counts, also with TP_ERROR_BUFFER_TOO_SMALL, when nothing
+    is written; size both with tp_place_probes_bound. Errors name the numbers: a target above the
+    candidates or too many candidates for memory (TP_ERROR_INVALID_ARGUMENT), fewer than 4 candidates
+    (TP_ERROR_DEGENERATE), no mesh, nothing with an inside or no candidate a seed sees (TP_ERROR_SCENE);
+    cancelling writes nothing. */
 TP_API tp_status tp_place_probes(const tp_scene* scene, const tp_placement_options* options, float* out_positions,
                                  size_t capacity, size_t* out_count, float* out_error_curve, size_t curve_capacity,
                                  size_t* out_curve_points);

@@ -16,7 +16,8 @@ constexpr float kDefaultAlbedo = 0.8f;
 constexpr float kDefaultPlacementSpacing = 1.0f;  // world units
 constexpr float kDefaultPlacementMargin = 0.1f;   // world units
 constexpr float kDefaultWalkMinHeight = 0.0f, kDefaultWalkMaxHeight = 2.0f;
-constexpr float kDefaultPlacementErrorBound = 0.05f;
+constexpr float kDefaultPlacementErrorBound = 0.25f;
+constexpr float kDefaultPlacementLightClearance = 1.0f;  // world units
 constexpr uint32_t kDefaultPlacementRays = 128;
 // Lights (tp_light, bake/scene.h's LightDescription): a white, baked, shadowing point light of
 // intensity 1 and unlimited range, pointing down, with spot cones of 30 and 45 degrees.

@@ -175,6 +175,7 @@ namespace TetProbe
         public uint threads;
         public IntPtr progress;
         public IntPtr progress_user;
+        public float light_clearance;
     }
 
     internal static class NativeMethods
@@ -444,6 +445,9 @@ namespace TetProbe
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_scene_set_probes(SceneHandle scene, [In] Vector3[] positions, UIntPtr count);
+
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
+        public static extern int tp_scene_set_playable_seeds(SceneHandle scene, [In] Vector3[] positions, UIntPtr count);
 
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl)]
         public static extern int tp_bake_options_init(ref NativeBakeOptions options);

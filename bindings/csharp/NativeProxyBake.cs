@@ -123,6 +123,11 @@ namespace TetProbe
             Check(NativeMethods.tp_scene_set_probes(scene, positions, (UIntPtr)positions.Length));
         }
 
+        public static void SetPlayableSeeds(SceneHandle scene, Vector3[] positions)
+        {
+            Check(NativeMethods.tp_scene_set_playable_seeds(scene, positions, (UIntPtr)positions.Length));
+        }
+
         public static NativeBakeOptions DefaultBakeOptions()
         {
             EnsureVersion();

@@ -10,9 +10,9 @@ namespace TetProbe
     /// <summary>Where placement's candidates stand (TP_PLACEMENT_*).</summary>
     public enum PlacementMode
     {
-        /// <summary>A grid over the scene's bounds.</summary>
+        /// <summary>A lattice over the scene's bounds.</summary>
         Whole = 0,
-        /// <summary>Columns of the grid across a height band above every upward-facing (+y) surface.</summary>
+        /// <summary>Columns of the lattice across a height band above every upward-facing surface (the scene's up).</summary>
         Walkable = 1,
     }
 
@@ -30,23 +30,26 @@ namespace TetProbe
     public sealed class PlacementOptions
     {
         public PlacementMode Mode;
-        /// <summary>Candidate grid spacing (positive).</summary>
+        /// <summary>Candidate lattice spacing (positive).</summary>
         public float Spacing;
         /// <summary>Least distance of a probe from every surface.</summary>
         public float Margin;
         /// <summary>Walkable mode: the height band above the floor.</summary>
         public float WalkMinHeight, WalkMaxHeight;
-        /// <summary>Pruning stops at this many probes (0 = no target; set ErrorBound to 0 as well to reach it whatever
-        /// the error).</summary>
+        /// <summary>Placement stops at this many probes (0 = no target; set ErrorBound to 0 as well to reach it
+        /// whatever the error).</summary>
         public int TargetCount;
-        /// <summary>Pruning never lets the relative irradiance error exceed this (0 = no bound).</summary>
+        /// <summary>Without a target, placement stops at the fewest probes whose estimated error (luminance irradiance
+        /// at validation points relative to its mean, the bake's noise taken out) is at most this (0 = no bound).</summary>
         public float ErrorBound;
-        /// <summary>Rays per candidate of the low-sample bake that pruning compares, and its bounces.</summary>
+        /// <summary>Rays per candidate of the low-sample bake (at least 2: it is baked in two halves), and its bounces.</summary>
         public int Rays, Bounces;
         /// <summary>The same seed gives the same probes whatever the thread count.</summary>
         public ulong Seed;
         /// <summary>0 = all cores.</summary>
         public int Threads;
+        /// <summary>Points closer than this to a point or spot light do not count in the error (0 = all count).</summary>
+        public float LightClearance;
 
         public PlacementOptions()
         {
@@ -62,6 +65,7 @@ namespace TetProbe
             Bounces = (int)defaults.bounces;
             Seed = defaults.seed;
             Threads = (int)defaults.threads;
+            LightClearance = defaults.light_clearance;
         }
 
         internal NativePlacementOptions ToNative()
@@ -82,19 +86,21 @@ namespace TetProbe
             options.bounces = (uint)Bounces;
             options.seed = Seed;
             options.threads = (uint)Threads;
+            options.light_clearance = LightClearance;
             return options;
         }
     }
 
-    /// <summary>One point of placement's error curve: the error (relative irradiance change at held-out points) of
-    /// the set pruned down to Probes probes.</summary>
+    /// <summary>One point of placement's error curve: the estimated error (see PlacementOptions.ErrorBound) of the
+    /// first Probes probes chosen.</summary>
     public struct PlacementErrorPoint
     {
         public int Probes;
         public float Error;
     }
 
-    /// <summary>Placed probes and the error curve from all candidates (error 0) down to them.</summary>
+    /// <summary>Placed probes in the order chosen (the first k are the placement for k probes) and the error curve, one
+    /// point per round with counts increasing to them (empty when every candidate is returned unchosen).</summary>
     public sealed class PlacementResult
     {
         public readonly Vector3[] Positions;
@@ -113,8 +119,9 @@ namespace TetProbe
     /// triangle, or the inside of a closed two-sided mesh; see capi/tetprobe.h).</summary>
     public static class Placement
     {
-        /// <summary>Places probes: candidates on a grid (options.Mode), none inside geometry or within the margin of a
-        /// surface, baked with options.Rays, then pruned greedily to options.TargetCount or up to options.ErrorBound.
+        /// <summary>Places probes: candidates on a lattice (options.Mode), none inside geometry or within the margin of a
+        /// surface (and connected to the scene's playable seeds when it has some), baked with options.Rays, then chosen by
+        /// greedy insertion up to options.TargetCount or options.ErrorBound (see tp_place_probes).
         /// progress receives fractions in [0, 1] on the calling thread; cancelling `cancel` stops with
         /// OperationCanceledException.</summary>
         public static PlacementResult PlaceProbes(Scene scene, PlacementOptions options = null, IProgress<float> progress = null,
@@ -127,8 +134,8 @@ namespace TetProbe
             return new PlacementResult(positions, curve);
         }
 
-        /// <summary>The most probes PlaceProbes returns for these options (the candidates before the inside and margin
-        /// tests); throws as PlaceProbes does on bad options.</summary>
+        /// <summary>The most probes PlaceProbes returns for these options (the points the inside and margin tests are
+        /// applied to); throws as PlaceProbes does on bad options.</summary>
         public static int MaxProbes(Scene scene, PlacementOptions options = null)
         {
             if (scene == null) throw new ArgumentNullException("scene");

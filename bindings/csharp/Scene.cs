@@ -154,6 +154,14 @@ namespace TetProbe
             }
         }
 
+        /// <summary>Points known to be where objects go (spawn points; copied, an empty array clears them): placement
+        /// then keeps only candidates connected to one. A Quake 3 level loaded from its file has its spawn points.</summary>
+        public void SetPlayableSeeds(Vector3[] positions)
+        {
+            if (positions == null) throw new ArgumentNullException("positions");
+            NativeProxy.SetPlayableSeeds(Live(), positions);
+        }
+
         internal SceneHandle Live()
         {
             if (handle.IsClosed) throw new ObjectDisposedException("Scene");

@@ -11,6 +11,21 @@
 //       the store layout (default: every layout of store_layouts.h; --layout also takes fast_leak and
 //       compact_leak, leak control), measured with the level's metric. Prints a table, or with
 //       --json {"level": <level fields below, without results>, "probe_file": str, "results": [<result>]}.
+//   tetprobe_bench levels placement [--levels default|all|A,B,...] [--out DIR]
+//       Placement against the simpler choices among the same candidates, compact layout, at the counts
+//       kPlacementCounts (50 to 4,000): placed (one tp_place_probes to the largest count, threads --threads;
+//       each count its prefix), placed with leak control, random subsamples (mean of 3), the uniform
+//       lattice pick, all candidates (with and without leak control), and the error placement reports for
+//       each count (its curve) beside the one measured. Writes DIR/levels_placement.json:
+//       {"schema": "tetprobe-bench-levels-placement/1", "machine", "settings": {"counts", "random_seeds",
+//        "placement": {...as levels.json}, "threads": int}, "metric": str,
+//        "levels": [{<level fields of levels.json>, "candidates": int, "placement_seconds": float,
+//                    "placement_progress_calls": int, "curve": [[probes, error]],
+//                    "all": {"rms", "rms_leak": float},
+//                    "counts": [{"probes": int, "placed", "placed_leak", "random", "lattice", "reported": float,
+//                                "p95": {"placed", "random", "lattice": float}}]}]}
+//       (errors: RMS of the metric, p95 its 95th percentile; reported: the placement's curve at that count, NaN
+//       written as null).
 //   tetprobe_bench levels prepare --level NAME...   only prepares (and caches) the levels
 //   tetprobe_bench levels survey                    every level of --maps: triangles, lights, spawns, size
 //
@@ -246,6 +261,7 @@ const std::vector<std::string> kDefaultLevels = {"aggressor", "islanddm"};
 const std::vector<uint32_t> kCounts = {100, 200, 400, 800};
 const std::vector<uint32_t> kQuickCounts = {50, 100};
 constexpr int kRandomSeeds = 3;
+const std::vector<uint32_t> kPlacementCounts = {50, 100, 200, 400, 800, 1600, 3200, 4000};
 
 // Means over the random subsamples' results (error, time and bytes).
 LevelResult mean_of(const std::vector<LevelResult>& rs) {
@@ -395,6 +411,99 @@ int run_part(const LevelArgs& a, const LevelSettings& settings) {
     return status;
 }
 
+// Placement against the simpler choices on one level (see the top of this file: levels placement).
+Json run_level_placement(const LevelArgs& a, const std::string& name, const LevelSettings& settings) {
+    Level level;
+    prepare_level(level_path(a, name), a.cache, settings, a.threads, &level);
+    Json out = level_json(level, settings);
+    const PlacementRules rules;
+    const CandidateSet candidates = find_candidates(level, rules, settings);
+    const size_t candidate_count = candidates.positions.size() / 3;
+    const StoreLayout& plain = *find_store_layout("compact");
+    const StoreLayout& leak = *find_store_layout("compact_leak");
+    const uint32_t largest = uint32_t(std::min<size_t>(kPlacementCounts.back(), candidate_count));
+    const PlacementRun run = placement_run(level, rules, largest, a.threads);
+    std::printf("\n%s: %zu candidates, placement to %u probes in %.1f s (%zu progress reports), reference noise %.3g\n",
+                level.name.c_str(), candidate_count, largest, run.seconds, run.progress_calls, level.noise_rms);
+    std::printf("| probes | placed | placed, leak control | random (mean of %d) | lattice | placed / random | placed / lattice | "
+                "reported | reported / measured |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n", kRandomSeeds);
+    auto nullable = [](double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); };
+    auto subset = [&](const std::vector<uint32_t>& picks, std::vector<float>* p, std::vector<float>* sh) {
+        p->clear(), sh->clear();
+        for (uint32_t i : picks) {
+            p->insert(p->end(), &candidates.positions[3 * size_t(i)], &candidates.positions[3 * size_t(i)] + 3);
+            sh->insert(sh->end(), &candidates.sh[27 * size_t(i)], &candidates.sh[27 * size_t(i)] + 27);
+        }
+    };
+    Json counts = Json::array();
+    for (uint32_t n : kPlacementCounts) {
+        if (n > largest) continue;
+        const std::vector<float> placed(run.positions.begin(), run.positions.begin() + 3 * std::ptrdiff_t(n));
+        const std::vector<float> placed_sh = sh_of(level, candidates, placed, settings);
+        const LevelError placed_error = evaluate_tetprobe(level, placed, placed_sh, plain).error;
+        const double placed_rms = placed_error.rms;
+        const double leak_rms = evaluate_tetprobe(level, placed, placed_sh, leak).error.rms;
+        std::vector<float> p, sh;
+        double random_rms = 0, random_p95 = 0;
+        for (int seed = 0; seed < kRandomSeeds; ++seed) {
+            subset(random_pick(candidate_count, n, 100 + uint64_t(seed)), &p, &sh);
+            const LevelError e = evaluate_tetprobe(level, p, sh, plain).error;
+            random_rms += e.rms / kRandomSeeds, random_p95 += e.p95 / kRandomSeeds;
+        }
+        subset(lattice_pick(candidates.positions, n), &p, &sh);
+        const LevelError lattice_error = evaluate_tetprobe(level, p, sh, plain).error;
+        const double lattice_rms = lattice_error.rms;
+        const double reported = curve_error_at(run.curve, n);
+        std::printf("| %u | %.4f | %.4f | %.4f | %.4f | %.3f | %.3f | %.4f | %.3f |\n", n, placed_rms, leak_rms, random_rms,
+                    lattice_rms, placed_rms / random_rms, placed_rms / lattice_rms, reported, reported / placed_rms);
+        std::fflush(stdout);
+        counts.push_back({{"probes", n}, {"placed", placed_rms}, {"placed_leak", leak_rms}, {"random", random_rms},
+                          {"lattice", lattice_rms}, {"reported", nullable(reported)},
+                          {"p95", {{"placed", placed_error.p95}, {"random", random_p95}, {"lattice", lattice_error.p95}}}});
+    }
+    const double all_rms = evaluate_tetprobe(level, candidates.positions, candidates.sh, plain).error.rms;
+    const double all_leak = evaluate_tetprobe(level, candidates.positions, candidates.sh, leak).error.rms;
+    std::printf("| all %zu | %.4f | %.4f | | | | | | |\n", candidate_count, all_rms, all_leak);
+    Json curve = Json::array();
+    for (size_t k = 0; k + 1 < run.curve.size(); k += 2) curve.push_back({run.curve[k], run.curve[k + 1]});
+    out["candidates"] = candidate_count;
+    out["placement_seconds"] = run.seconds;
+    out["placement_progress_calls"] = run.progress_calls;
+    out["curve"] = curve;
+    out["all"] = {{"rms", all_rms}, {"rms_leak", all_leak}};
+    out["counts"] = counts;
+    return out;
+}
+
+int run_placement_part(const LevelArgs& a, const LevelSettings& settings) {
+    std::vector<std::string> names = a.levels;
+    if (names.empty() || (names.size() == 1 && names[0] == "default")) names = kDefaultLevels;
+    if (names.size() == 1 && names[0] == "all") names = kAllLevels;
+    const PlacementRules rules;
+    Json doc = {{"schema", "tetprobe-bench-levels-placement/1"}, {"machine", machine_json(false)}};
+    doc["settings"] = {{"counts", kPlacementCounts}, {"random_seeds", kRandomSeeds}, {"threads", a.threads},
+                       {"placement", {{"mode", "walkable"}, {"spacing", rules.spacing},
+                                      {"band", {rules.walk_min_height, rules.walk_max_height}},
+                                      {"rays", rules.rays}, {"error_bound", 0}}}};
+    doc["metric"] = kMetricText;
+    Json levels = Json::array();
+    int status = 0;
+    for (const std::string& name : names) {
+        try {
+            levels.push_back(run_level_placement(a, name, settings));
+        } catch (const std::exception& e) {
+            std::printf("%s: not run: %s\n", name.c_str(), e.what());
+            levels.push_back({{"name", name}, {"not_run", e.what()}});
+            status = 1;
+        }
+        if (!a.out.empty()) {
+            doc["levels"] = levels;
+            write_json_file(a.out, "levels_placement.json", doc);
+        }
+    }
+    return status;
+}
+
 // Every level of --maps: what the choice of the benchmark's levels was made from.
 int run_survey(const LevelArgs& a) {
     std::vector<std::string> files;
@@ -434,8 +543,9 @@ int run_levels_bench(int argc, char** argv) {
         if (a.command == "eval") return run_eval(a, settings);
         if (a.command == "prepare") return run_prepare(a, settings);
         if (a.command == "survey") return run_survey(a);
+        if (a.command == "placement") return run_placement_part(a, settings);
         if (a.command.empty() || a.command == "run") return run_part(a, settings);
-        std::fprintf(stderr, "usage: tetprobe_bench levels [run]|eval|prepare|survey ... (see samples/bench/bench_levels.cpp)\n");
+        std::fprintf(stderr, "usage: tetprobe_bench levels [run]|eval|placement|prepare|survey ... (see samples/bench/bench_levels.cpp)\n");
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetprobe_bench levels: %s\n", e.what());

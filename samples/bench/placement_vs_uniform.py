@@ -1,8 +1,8 @@
 """Placement quality on the two rooms: automatically placed probes against a uniform subsample of the same
 candidates and the scene's hand-placed probes, each baked at 1,024 rays and judged at 600 random free
 points against a 1,024-ray bake there (mean over the points of the relative irradiance error, RMS over
-normals and channels), and the placement's own error curve (its pruning error at held-out points against
-the number of probes). Run from the repository root:
+normals and channels), and the placement's own error curve (its estimate of the luminance irradiance's
+interpolation error at validation points against the number of probes). Run from the repository root:
 
     TETPROBE_LIBRARY=build/libtetprobe.so PYTHONPATH=bindings/python /usr/bin/python3 samples/bench/placement_vs_uniform.py [DIR]
 
@@ -10,7 +10,7 @@ With DIR (as `make bench` runs it) it also writes DIR/placement.json for report.
 when the bindings, numpy or the placement fail:
     {"part": "placement", "scene": str, "spacing": 0.5, "candidates": int, "placement_rays": int,
      "reference_rays": int, "query_points": int,
-     "error_curve": [[probes, error], ...],   # the placement to the smallest target, from all candidates down
+     "error_curve": [[probes, error], ...],   # the placement to the largest target, counts increasing
      "comparison": [{"probes": int, "placed": float, "uniform": float, "placement_seconds": float}, ...],
      "hand_placed": {"probes": int, "error": float}}
 """
@@ -51,13 +51,13 @@ def measure():
         d = np.linalg.norm(irradiance(interpolated) - reference, axis=1) / np.linalg.norm(reference, axis=1)
         return float(d.mean())
 
-    comparison, curve = [], None
+    comparison, curve = [], []
     for n in TARGETS:
         start = time.time()
         placement = tetprobe.place_probes(scene, spacing=0.5, target=n)
         seconds = time.time() - start
-        if curve is None:  # the smallest target's curve passes through every larger count
-            curve = [[int(c), float(e)] for c, e in placement.error_curve]
+        # The largest target's curve passes through every smaller count (each is a prefix of its order).
+        curve = [[int(c), float(e)] for c, e in placement.error_curve]
         uniform = candidates[((2 * np.arange(n) + 1) * len(candidates)) // (2 * n)]
         comparison.append({"probes": n, "placed": error(placement.positions), "uniform": error(uniform),
                            "placement_seconds": seconds})

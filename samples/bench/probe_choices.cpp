@@ -62,6 +62,45 @@ std::vector<float> placed_probes(const Level& level, const PlacementRules& rules
     return p;
 }
 
+PlacementRun placement_run(const Level& level, const PlacementRules& rules, uint32_t target, uint32_t threads) {
+    tp_placement_options o = options_of(rules, target);
+    o.threads = threads;
+    PlacementRun run;
+    o.progress = [](void* user, float, const char*) -> int {
+        ++*static_cast<size_t*>(user);
+        return 0;
+    };
+    o.progress_user = &run.progress_calls;
+    size_t bound = 0;
+    if (tp_place_probes_bound(level.handle.get(), &o, &bound) != TP_OK)
+        throw std::runtime_error(level.name + ": tp_place_probes_bound: " + tp_last_error());
+    run.positions.resize(3 * bound);
+    run.curve.resize(2 * bound);
+    size_t count = 0, points = 0;
+    const auto start = std::chrono::steady_clock::now();
+    if (tp_place_probes(level.handle.get(), &o, run.positions.data(), bound, &count, run.curve.data(), bound, &points) != TP_OK)
+        throw std::runtime_error(level.name + ": tp_place_probes: " + tp_last_error());
+    run.seconds = seconds_since(start);
+    run.positions.resize(3 * count);
+    run.curve.resize(2 * points);
+    return run;
+}
+
+double curve_error_at(const std::vector<float>& curve, size_t probes) {
+    const size_t points = curve.size() / 2;
+    for (size_t k = 0; k < points; ++k) {
+        const double n = curve[2 * k];
+        if (n == double(probes)) return curve[2 * k + 1];
+        if (n > double(probes)) {
+            if (k == 0) return NAN;
+            const double n0 = curve[2 * k - 2], e0 = curve[2 * k - 1], e1 = curve[2 * k + 1];
+            const double t = std::log(double(probes) / n0) / std::log(n / n0);
+            return e0 + t * (e1 - e0);
+        }
+    }
+    return NAN;
+}
+
 std::vector<uint32_t> random_pick(size_t candidates, size_t n, uint64_t seed) {
     std::vector<uint32_t> all(candidates);
     std::iota(all.begin(), all.end(), 0u);

@@ -29,6 +29,20 @@ CandidateSet find_candidates(const Level& level, const PlacementRules& rules, co
 // tp_place_probes with target N (error bound 0): the placed positions; *seconds its time.
 std::vector<float> placed_probes(const Level& level, const PlacementRules& rules, uint32_t target, double* seconds);
 
+// One placement to `target` probes (walkable, error bound 0) with its error curve, its time and how often it
+// reported progress: every count up to target is a prefix of the positions (tp_place_probes's order).
+struct PlacementRun {
+    std::vector<float> positions;
+    std::vector<float> curve;  // (probes, estimated error) pairs, counts increasing
+    double seconds = 0;
+    size_t progress_calls = 0;
+};
+PlacementRun placement_run(const Level& level, const PlacementRules& rules, uint32_t target, uint32_t threads);
+
+// The curve's estimated error at `probes`: exact at a round's count, else linear in log(probes) between the
+// rounds around it; NaN outside the curve.
+double curve_error_at(const std::vector<float>& curve, size_t probes);
+
 // Indices of N candidates: a seeded random subsample; a uniform lattice pick (the cells of the coarsest cubic
 // lattice that has at least N occupied cells each keep the candidate nearest their centre, the N nearest of
 // those are kept).

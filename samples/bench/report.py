@@ -17,6 +17,7 @@ import sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import report_levels  # noqa: E402  (beside this file)
+import report_placement_levels  # noqa: E402
 import report_plots  # noqa: E402
 
 PARTS = {
@@ -29,6 +30,7 @@ PARTS = {
     "leak": ("leak.json", "tetprobe_bench leak"),
     "placement": ("placement.json", "samples/bench/placement_vs_uniform.py"),
     "levels": ("levels.json", "tetprobe_bench levels (samples/bench/run_levels.sh)"),
+    "levels_placement": ("levels_placement.json", "tetprobe_bench levels placement (samples/bench/run_levels.sh)"),
 }
 
 
@@ -145,6 +147,31 @@ class Report:
                 self.not_run.append(("%s on %s at %s" % (s.get("method"), level.get("name"),
                                                          num(s.get("budget_bytes", s.get("target")))), s.get("why")))
             out += report_levels.level_section(level, st, self.plot("levels_error_vs_bytes", level))
+        return out
+
+    def levels_placement(self):
+        out = ["## Real levels: placement against simpler choices of the same candidates", ""]
+        doc = self.docs.get("levels_placement")
+        if doc is None:
+            return out + not_run(self.missing["levels_placement"]) + [""]
+        st = doc.get("settings", {})
+        placement = st.get("placement", {})
+        out += ["Placement (tp_place_probes, %s mode, spacing %s m, band %s m, %s-ray candidate bake, %s threads) runs "
+                "once to the largest count; each count is a prefix of its order. Beside it, among the same candidates "
+                "(each chosen probe's SH from the candidates' one bake, compact layout): a random subsample (mean of %s "
+                "seeds), the uniform lattice pick, all candidates; the error placement reports for each count (its "
+                "curve, between rounds interpolated in log count); and the placed set with leak control. Same metric "
+                "as above. Misses: placed above 0.8x random (random), above the lattice pick (lattice), reported more "
+                "than 30%% off the measured (reported), leak control above the error without (leak)." % (
+                    placement.get("mode"), placement.get("spacing"), placement.get("band"), placement.get("rays"),
+                    st.get("threads") or "all", st.get("random_seeds")), ""]
+        out += table(report_placement_levels.SUMMARY_HEADER, report_placement_levels.summary_rows(doc)) + [""]
+        for level in doc.get("levels", []):
+            if level.get("not_run"):
+                self.not_run.append(("placement on real level %s" % level.get("name"), level["not_run"]))
+                out += report_placement_levels.level_section(level, [])
+                continue
+            out += report_placement_levels.level_section(level, self.plot("levels_placement", level))
         return out
 
     # ---- 1. interpolation methods
@@ -360,9 +387,9 @@ class Report:
         doc = self.docs.get("placement")
         if doc is None:
             return out + not_run(self.missing["placement"]) + [""]
-        out += ["%s: `tetprobe.place_probes` from %s candidates (spacing %s m, %s rays), pruned to a target. "
-                "Left of the plot: the placement's own error curve (the relative irradiance change at its "
-                "held-out points against all candidates, low-sample). Table and right: the placed probes, a "
+        out += ["%s: `tetprobe.place_probes` from %s candidates (spacing %s m, %s rays), chosen up to a target. "
+                "Left of the plot: the placement's own error curve (its estimate of the luminance irradiance's "
+                "interpolation error at validation points, low-sample). Table and right: the placed probes, a "
                 "uniform subsample of the same candidates and the scene's hand-placed probes, each baked at %s "
                 "rays, judged at %s random free points against a bake there (mean relative irradiance "
                 "error)." % (doc.get("scene"), num(doc.get("candidates")), num(doc.get("spacing")),
@@ -450,7 +477,7 @@ class Report:
 
     def markdown(self):
         body = []
-        for section in (self.real_levels, self.methods, self.precision, self.locate, self.bake, self.probe_count, self.leak,
+        for section in (self.real_levels, self.levels_placement, self.methods, self.precision, self.locate, self.bake, self.probe_count, self.leak,
                         self.placement, self.headline, self.store):
             body += section()
         out = ["# tetprobe benchmark report", "",
@@ -498,6 +525,15 @@ def readme_section(report, images="docs/bench/"):
         out += table(report_levels.SUMMARY_HEADER, report_levels.summary_rows(levels)) + [""]
         out += ["![%s](%slevels_error_vs_bytes_%s.png)" % (l["name"], images, report_plots._slug(l["name"]))
                 for l in levels.get("levels", []) if not l.get("not_run")] + [""]
+    placed = report.docs.get("levels_placement")
+    if placed:
+        out += ["**Placement on the real levels** (placed against a random subsample and the uniform lattice pick of "
+                "the same candidates at %s probes, compact layout; counts of the level's budgets that meet each "
+                "requirement; in brackets the error of all candidates without and with leak control)" %
+                " / ".join(str(c) for c in placed.get("settings", {}).get("counts", [])), ""]
+        out += table(report_placement_levels.SUMMARY_HEADER, report_placement_levels.summary_rows(placed)) + [""]
+        out += ["![%s](%slevels_placement_%s.png)" % (l["name"], images, report_plots._slug(l["name"]))
+                for l in placed.get("levels", []) if not l.get("not_run")] + [""]
     ratios = report.ratios()
     if ratios:
         out += ["**Headline ratios**", ""] + table([("ratio", "<"), ("this run", ">")],

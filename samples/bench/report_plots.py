@@ -204,9 +204,8 @@ class Plotter:
         fig, (left, right) = plt.subplots(1, 2, figsize=(10.5, 4.0))
         fig.subplots_adjust(wspace=0.3)
         left.plot([c[0] for c in curve], [c[1] for c in curve], marker="o", markersize=3)
-        left.invert_xaxis()
-        left.set_xlabel("probes (pruned from %d candidates)" % doc["candidates"])
-        left.set_ylabel("irradiance change at held-out points (relative)")
+        left.set_xlabel("probes (chosen among %d candidates)" % doc["candidates"])
+        left.set_ylabel("estimated error at validation points (relative)")
         left.set_title("placement's own error curve")
         left.grid(True, alpha=0.3)
         rows = doc["comparison"]
@@ -262,3 +261,31 @@ class Plotter:
             ax.grid(True, which="both", alpha=0.3)
         axes[0].legend(fontsize=7, loc="upper center", bbox_to_anchor=(1.1, -0.14), ncol=4)
         return fig, "levels_error_vs_bytes_%s.png" % _slug(level["name"])
+
+    def levels_placement(self, level):
+        """Error against probe count on one real level: placed, random, lattice and all candidates, and the
+        error placement reports (its curve)."""
+        plt = self.plt
+        fig, ax = plt.subplots(figsize=(7.5, 4.6))
+        counts = level["counts"]
+        probes = [r["probes"] for r in counts]
+        for key, label, line, marker in (("placed", "placed", "-", "o"), ("placed_leak", "placed, leak control", "-", "."),
+                                         ("random", "random subsample (mean of 3)", "--", "v"),
+                                         ("lattice", "uniform lattice pick", "--", "^")):
+            ax.plot(probes, [r[key] for r in counts], linestyle=line, marker=marker, markersize=5, label=label)
+        curve = level.get("curve", [])
+        if curve:
+            ax.plot([c[0] for c in curve], [c[1] for c in curve], color="grey", linestyle=":", linewidth=1.2,
+                    label="error placement reports (its curve)")
+        every = level.get("all", {})
+        if every.get("rms") is not None:
+            ax.axhline(every["rms"], color="black", linestyle="-.", linewidth=1,
+                       label="all %s candidates" % "{:,}".format(level.get("candidates", 0)))
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("probes")
+        ax.set_ylabel("RMS luminance irradiance error / level mean")
+        ax.set_title("%s: placement against simpler choices of the same candidates" % level["name"])
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+        return fig, "levels_placement_%s.png" % _slug(level["name"])

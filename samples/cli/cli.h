@@ -157,8 +157,8 @@ BakeSettings bake_settings(const Arguments& a, uint32_t default_rays);
 // positions: 3 per probe, or empty for the scene's own probes.
 BakeResult bake_scene(const tp_scene* scene, const BakeSettings& settings, const std::vector<float>& positions = {});
 
-// Replaces a scene's probes with automatically placed ones (tp_place_probes at `spacing`, pruned
-// to `error_bound`) and prints what placement did; the demo's scene uses it.
+// Replaces a scene's probes with automatically placed ones (tp_place_probes at `spacing`, chosen
+// until the estimated error is at most `error_bound`) and prints what placement did; the demo's scene uses it.
 void place_scene_probes(tp_scene* scene, float spacing, float error_bound);
 
 // Command-line parsing helpers.

@@ -26,9 +26,9 @@ void place_scene_probes(tp_scene* scene, float spacing, float error_bound) {
           "placing probes");
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     check(tp_scene_set_probes(scene, positions.data(), count), "setting the placed probes");
-    std::printf("placement: %zu probes placed automatically (spacing %g: %.0f candidates, pruned to error %.3f at "
-                "held-out points, bound %g) in %.2f s, instead of the file's %zu hand-placed ones\n",
-                count, spacing, double(curve[0]), double(curve[2 * (points - 1) + 1]), error_bound, seconds, hand_placed);
+    std::printf("placement: %zu probes placed automatically (spacing %g, estimated error %.3f, bound %g) in %.2f s, "
+                "instead of the file's %zu hand-placed ones\n",
+                count, spacing, points ? double(curve[2 * (points - 1) + 1]) : 0.0, error_bound, seconds, hand_placed);
 }
 
 int command_place(const std::vector<std::string>& args) {
@@ -47,7 +47,7 @@ int command_place(const std::vector<std::string>& args) {
     options.walk_min_height = float(parse_number(a.value("--min-height", std::to_string(options.walk_min_height)), "--min-height"));
     options.walk_max_height = float(parse_number(a.value("--max-height", std::to_string(options.walk_max_height)), "--max-height"));
     options.target_count = uint32_t(parse_count(a.value("--target", "0"), "--target"));
-    // A target alone prunes to it; an error bound alone (or with the target) also stops pruning.
+    // A target alone places that many; an error bound alone (or with the target) also stops placement.
     options.error_bound = float(parse_number(a.value("--error", a.has("--target") ? "0" : std::to_string(options.error_bound)), "--error"));
     options.rays = uint32_t(parse_count(a.value("--rays", std::to_string(options.rays)), "--rays"));
     options.bounces = uint32_t(parse_count(a.value("--bounces", std::to_string(options.bounces)), "--bounces"));
@@ -73,9 +73,9 @@ int command_place(const std::vector<std::string>& args) {
     const std::string out = a.value("-o", "");
     write_probe_file(out, positions, {});
     const float error = points ? curve[2 * (points - 1) + 1] : 0.0f;
-    std::printf("placed %zu probes (of %.0f candidates) in %.2f s, error %.4f (relative irradiance change at "
-                "held-out points); wrote %s\n",
-                count, points ? double(curve[0]) : double(count), seconds, error, out.c_str());
+    std::printf("placed %zu probes in %.2f s, estimated error %.4f (luminance irradiance at validation points, "
+                "relative to their mean); wrote %s\n",
+                count, seconds, error, out.c_str());
     if (a.has("--curve")) {
         nlohmann::json json;
         json["scene"] = a.positional[0];

@@ -173,6 +173,7 @@ int main(int argc, char** argv) {
     test_leak_control_queries();
     test_placement_options_and_errors();
     test_placement_whole_and_walkable();
+    test_placement_playable_seeds();
     test_inside_probes();
     test_buffer_sizes_and_strides();
     test_probe_volumes();

@@ -100,6 +100,7 @@ void test_occlusion_and_leak_control(void);
 /* placement.c */
 void test_placement_options_and_errors(void);
 void test_placement_whole_and_walkable(void);
+void test_placement_playable_seeds(void);
 void test_inside_probes(void);
 void test_occlusion_bake_and_blend(void);
 void test_leak_control_queries(void);

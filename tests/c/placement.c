@@ -72,7 +72,8 @@ static int free_with_margin(const float p[3], float margin) {
 typedef struct progress_log {
     int calls;
     int cancel_at;   /* cancel on this call (1-based), 0 = never */
-    int stages_seen; /* bit 0 "candidates", 1 "bake", 2 "prune" */
+    const char* cancel_stage; /* cancel at the first report of this stage, NULL = never */
+    int stages_seen; /* bit 0 "candidates", 1 "bake", 2 "select" */
     int fraction_in_range;
 } progress_log;
 
@@ -82,7 +83,8 @@ static int log_progress(void* user, float fraction, const char* stage) {
     if (!(fraction >= 0.0f && fraction <= 1.0f)) log->fraction_in_range = 0;
     if (stage && strcmp(stage, "candidates") == 0) log->stages_seen |= 1;
     if (stage && strcmp(stage, "bake") == 0) log->stages_seen |= 2;
-    if (stage && strcmp(stage, "prune") == 0) log->stages_seen |= 4;
+    if (stage && strcmp(stage, "select") == 0) log->stages_seen |= 4;
+    if (log->cancel_stage && stage && strcmp(stage, log->cancel_stage) == 0) return 1;
     return log->cancel_at != 0 && log->calls >= log->cancel_at;
 }
 
@@ -110,9 +112,9 @@ void test_placement_options_and_errors(void) {
     CHECK(options.mode == TP_PLACEMENT_WHOLE);
     CHECK(options.spacing == 1.0f && options.margin == 0.1f);
     CHECK(options.walk_min_height == 0.0f && options.walk_max_height == 2.0f);
-    CHECK(options.target_count == 0 && options.error_bound == 0.05f);
+    CHECK(options.target_count == 0 && options.error_bound == 0.25f);
     CHECK(options.rays == 128 && options.bounces == 2 && options.seed == 0 && options.threads == 0);
-    CHECK(options.progress == NULL && options.progress_user == NULL);
+    CHECK(options.progress == NULL && options.progress_user == NULL && options.light_clearance == 1.0f);
     EXPECT_STATUS(tp_placement_options_init(NULL), TP_ERROR_INVALID_ARGUMENT);
 
     options = quick_options();
@@ -123,7 +125,7 @@ void test_placement_options_and_errors(void) {
     EXPECT_STATUS(tp_place_probes(scene, &options, positions, 10, NULL, NULL, 0, NULL), TP_ERROR_INVALID_ARGUMENT);
 
     /* Bad options: refused by the bound and by the placement alike, nothing written. */
-    for (k = 0; k < 7; ++k) {
+    for (k = 0; k < 8; ++k) {
         bad = options;
         switch (k) {
             case 0: bad.spacing = 0.0f; break;
@@ -131,7 +133,8 @@ void test_placement_options_and_errors(void) {
             case 2: bad.spacing = (float)NAN; break;
             case 3: bad.mode = 7u; break;
             case 4: bad.rays = 0u; break;
-            case 5: bad.struct_size = 4u; break;
+            case 5: bad.rays = 1u; break; /* two half bakes need two rays */
+            case 6: bad.struct_size = 4u; break;
             default: bad.margin = 100.0f; break; /* larger than the scene */
         }
         bound = 99;
@@ -139,17 +142,38 @@ void test_placement_options_and_errors(void) {
         positions[0] = 42.0f;
         EXPECT_FAILS(tp_place_probes(scene, &bad, positions, 10, &count, NULL, 0, &points));
         CHECK(positions[0] == 42.0f);
-        if (k < 6) {
+        if (k < 7) {
             EXPECT_STATUS(tp_place_probes_bound(scene, &bad, &bound), TP_ERROR_INVALID_ARGUMENT);
             EXPECT_STATUS(tp_place_probes(scene, &bad, positions, 10, &count, NULL, 0, &points),
                           TP_ERROR_INVALID_ARGUMENT);
         }
     }
 
-    /* A target above the candidates. */
+    /* A target above the candidates: the message names both numbers. */
     EXPECT_OK(tp_place_probes_bound(scene, &options, &bound));
     bad = options;
     bad.target_count = (uint32_t)bound + 1000u;
+    EXPECT_STATUS(tp_place_probes(scene, &bad, positions, 10, &count, NULL, 0, &points), TP_ERROR_INVALID_ARGUMENT);
+    CHECK(mentions_number(tp_last_error(), (unsigned long)bad.target_count));
+    /* A spacing that leaves fewer than 4 candidates (one lattice point over the whole room) is refused with
+       the count, never a silent single probe; one that would need more than placement holds is refused too. */
+    bad = options;
+    bad.spacing = 1000.0f;
+    bad.target_count = 1;
+    EXPECT_STATUS(tp_place_probes(scene, &bad, positions, 10, &count, NULL, 0, &points), TP_ERROR_DEGENERATE);
+    CHECK(strstr(tp_last_error(), "needs at least 4") != NULL);
+    bad.spacing = 0.0001f;
+    EXPECT_STATUS(tp_place_probes_bound(scene, &bad, &bound), TP_ERROR_INVALID_ARGUMENT);
+    CHECK(strstr(tp_last_error(), "raise the spacing") != NULL);
+    /* A caller built before light_clearance (its struct ends before it) gets the default. */
+    bad = options;
+    bad.struct_size = (uint32_t)offsetof(tp_placement_options, light_clearance);
+    bad.light_clearance = -5.0f; /* beyond the caller's struct: never read */
+    EXPECT_OK(tp_place_probes_bound(scene, &bad, &bound));
+    bad = options;
+    bad.light_clearance = -1.0f;
+    bad.target_count = 8;
+    bad.error_bound = 0.0f;
     EXPECT_STATUS(tp_place_probes(scene, &bad, positions, 10, &count, NULL, 0, &points), TP_ERROR_INVALID_ARGUMENT);
 
     /* No mesh: nothing can be inside, nothing decided. */
@@ -188,6 +212,7 @@ void test_placement_whole_and_walkable(void) {
     if (!scene) return;
 
     options = quick_options();
+    options.error_bound = 0.6f; /* reached well before all candidates (the lamp's falloff keeps 0.4 with all) */
     memset(&log, 0, sizeof log);
     log.fraction_in_range = 1;
     options.progress = log_progress;
@@ -210,14 +235,15 @@ void test_placement_whole_and_walkable(void) {
     for (i = 0; i < count; ++i) CHECK(free_with_margin(positions + 3 * i, options.margin));
     EXPECT_OK(tp_find_inside_probes(scene, positions, 0, count, inside, 1, &inside_count));
     CHECK(inside_count == 0);
-    /* The error curve: all candidates at error 0, then fewer probes, ending at the placement, within
-       the bound. */
+    /* The error curve: one point per round, counts increasing, ending at the placement, which meets the
+       bound (the error of fewer probes did not). */
     CHECK(points >= 1 && points <= bound);
     if (points >= 1) {
-        CHECK(curve[1] == 0.0f);
         CHECK(curve[2 * (points - 1)] == (float)count);
         CHECK(curve[2 * (points - 1) + 1] <= options.error_bound);
-        for (i = 1; i < points; ++i) CHECK(curve[2 * i] < curve[2 * (i - 1)] && curve[2 * i + 1] >= 0.0f);
+        for (i = 0; i < points; ++i) CHECK(curve[2 * i + 1] >= 0.0f);
+        for (i = 1; i < points; ++i) CHECK(curve[2 * i] > curve[2 * (i - 1)]);
+        if (points >= 2) CHECK(curve[2 * (points - 2) + 1] > options.error_bound);
     }
 
     /* The same seed gives the same bytes, whatever the thread count. */
@@ -246,16 +272,20 @@ void test_placement_whole_and_walkable(void) {
         }
     }
 
-    /* A target without an error bound: exactly that many probes, still in free space. */
+    /* A target without an error bound: exactly that many probes, still in free space; a smaller target
+       gives a prefix of the larger one's order. */
     options.error_bound = 0.0f;
+    options.target_count = 20;
+    EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points));
+    CHECK(again_count == 20 && again_points >= 1 && again_curve[2 * (again_points - 1)] == 20.0f);
+    for (i = 0; i < again_count && i < 20; ++i) CHECK(free_with_margin(again + 3 * i, options.margin));
     options.target_count = 6;
-    EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, NULL, 0, NULL));
-    CHECK(again_count == 6);
-    for (i = 0; i < again_count && i < 6; ++i) CHECK(free_with_margin(again + 3 * i, options.margin));
-    /* Neither: nothing is pruned, the curve has only the candidates. */
+    EXPECT_OK(tp_place_probes(scene, &options, positions, bound, &count, NULL, 0, NULL));
+    CHECK(count == 6 && memcmp(positions, again, 6 * 3 * sizeof(float)) == 0);
+    /* Neither: nothing is chosen or baked, every candidate returned, no curve. */
     options.target_count = 0;
     EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points));
-    CHECK(again_count >= count && again_points == 1 && again_curve[0] == (float)again_count);
+    CHECK(again_count > 20 && again_count <= bound && again_points == 0);
 
     /* Cancelled at the first report: TP_ERROR_CANCELLED, nothing written. */
     memset(&log, 0, sizeof log);
@@ -267,10 +297,16 @@ void test_placement_whole_and_walkable(void) {
     EXPECT_STATUS(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points),
                   TP_ERROR_CANCELLED);
     CHECK(log.calls == 1 && again[0] == 42.0f && again_curve[0] == 42.0f);
-    /* ... and later, during pruning. */
-    options.error_bound = 0.05f;
+    /* ... and later, while choosing. */
+    options.error_bound = 0.0f;
+    options.target_count = 20;
     memset(&log, 0, sizeof log);
-    log.cancel_at = 3;
+    EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, NULL, 0, NULL));
+    CHECK((log.stages_seen & 7) == 7);
+    memset(&log, 0, sizeof log);
+    log.cancel_stage = "select";
+    again[0] = 42.0f;
+    again_curve[0] = 42.0f;
     EXPECT_STATUS(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points),
                   TP_ERROR_CANCELLED);
     CHECK(again[0] == 42.0f && again_curve[0] == 42.0f);
@@ -301,6 +337,43 @@ void test_placement_whole_and_walkable(void) {
     free(again);
     free(curve);
     free(again_curve);
+    tp_scene_release(scene);
+}
+
+void test_placement_playable_seeds(void) {
+    tp_scene* scene = room_with_crate();
+    tp_placement_options options;
+    size_t bound = 0, all = 0, count = 0;
+    float* positions;
+    static const float inside_room[6] = {2.0f, 0.5f, -2.0f, -2.0f, 0.5f, 2.0f};
+    static const float outside[3] = {50.0f, 0.5f, 50.0f};
+    if (!scene) return;
+    options = quick_options();
+    options.mode = TP_PLACEMENT_WALKABLE;
+    options.error_bound = 0.0f;
+    EXPECT_OK(tp_place_probes_bound(scene, &options, &bound));
+    positions = (float*)malloc(3 * sizeof(float) * (bound + 1));
+    if (!positions) {
+        CHECK(!"allocation");
+        return;
+    }
+    EXPECT_OK(tp_place_probes(scene, &options, positions, bound, &all, NULL, 0, NULL));
+    /* Seeds on the floor: the floor and the crate's top are connected through free space (the crate is
+       1 high, the band 2), so every candidate is kept. */
+    EXPECT_OK(tp_scene_set_playable_seeds(scene, inside_room, 2));
+    EXPECT_OK(tp_place_probes(scene, &options, positions, bound, &count, NULL, 0, NULL));
+    CHECK(count == all && count > 0);
+    /* A seed that sees no candidate: a clear status naming the seeds. */
+    EXPECT_OK(tp_scene_set_playable_seeds(scene, outside, 1));
+    EXPECT_STATUS(tp_place_probes(scene, &options, positions, bound, &count, NULL, 0, NULL), TP_ERROR_SCENE);
+    CHECK(strstr(tp_last_error(), "playable seeds") != NULL && mentions_number(tp_last_error(), 1));
+    /* Cleared: all candidates again. */
+    EXPECT_OK(tp_scene_set_playable_seeds(scene, NULL, 0));
+    EXPECT_OK(tp_place_probes(scene, &options, positions, bound, &count, NULL, 0, NULL));
+    CHECK(count == all);
+    EXPECT_STATUS(tp_scene_set_playable_seeds(NULL, inside_room, 2), TP_ERROR_INVALID_ARGUMENT);
+    EXPECT_STATUS(tp_scene_set_playable_seeds(scene, NULL, 2), TP_ERROR_INVALID_ARGUMENT);
+    free(positions);
     tp_scene_release(scene);
 }
 

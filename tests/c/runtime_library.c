@@ -63,6 +63,7 @@ void test_runtime_library_refuses_bake_time(void) {
     EXPECT_UNSUPPORTED(tp_scene_probes, tp_scene_probes(NULL, &listed, &listed_count));
     CHECK(listed == NULL && listed_count == 0);
     EXPECT_UNSUPPORTED(tp_scene_set_probes, tp_scene_set_probes(NULL, positions, 4));
+    EXPECT_UNSUPPORTED(tp_scene_set_playable_seeds, tp_scene_set_playable_seeds(NULL, positions, 4));
     EXPECT_UNSUPPORTED(tp_bake_plan, tp_bake_plan(NULL, positions, 0, 4, &options, &plan, text, sizeof text));
     CHECK(text[0] == '\0');
     EXPECT_UNSUPPORTED(tp_bake, tp_bake(NULL, positions, 0, 4, &options, out, 0));

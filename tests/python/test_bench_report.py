@@ -3,7 +3,8 @@
 The fixtures in bench_fixtures/ follow the schemas of tetprobe_bench's parts: methods.json and
 precision.json as documented in samples/bench/bench_methods.cpp (hand-made values), locate.json,
 scipy_locate.json, bake.json and probes.json from a `--quick` run, leak.json from `tetprobe_bench leak`,
-placement.json from samples/bench/placement_vs_uniform.py, and levels.json from `tetprobe_bench levels --quick`
+placement.json from samples/bench/placement_vs_uniform.py, levels_placement.json (hand-made values, one level
+that ran and one that did not), and levels.json from `tetprobe_bench levels --quick`
 on one level (renamed fixture_arena; the brick grids its smallest budgets could not hold left out).
 """
 import json
@@ -20,10 +21,11 @@ sys.path.insert(0, os.path.join(HERE, "..", "..", "samples", "bench"))
 import report  # noqa: E402
 import scipy_locate  # noqa: E402
 
-SECTIONS = ["## Real levels: what accuracy costs against the probe volumes engines ship", "## 1. Interpolation methods", "## 2. Precision, layout and SH order", "## 3. Locate", "## 4. Bake",
+SECTIONS = ["## Real levels: what accuracy costs against the probe volumes engines ship",
+            "## Real levels: placement against simpler choices of the same candidates", "## 1. Interpolation methods", "## 2. Precision, layout and SH order", "## 3. Locate", "## 4. Bake",
             "## 5. Probe count", "## 6. Leak control", "## 7. Probe placement", "## 8. Headline ratios",
             "## Store benchmark"]
-PLOTS = ["levels_error_vs_bytes_fixture_arena.png", "methods_error_vs_time_fixture_rooms.png", "slices_fixture_rooms.png", "popping_fixture_rooms.png",
+PLOTS = ["levels_error_vs_bytes_fixture_arena.png", "levels_placement_fixture_arena.png", "methods_error_vs_time_fixture_rooms.png", "slices_fixture_rooms.png", "popping_fixture_rooms.png",
          "bake_error_vs_time.png", "probe_convergence.png", "leak_path.png", "placement_error.png"]
 
 
@@ -57,8 +59,7 @@ def test_every_section_and_plot_of_a_complete_run(tmp_path):
     text = _run(_results(tmp_path))
     for heading in SECTIONS:
         assert heading in text
-    assert "Every part and peer ran." in text
-    assert "**Not run:**" not in text
+    assert "placement on real level fixture_missing: cannot read fixture_missing.bsp" in text.replace("- ", "")
     for name in PLOTS:
         path = tmp_path / name
         assert path.stat().st_size > 1000, name
@@ -267,3 +268,19 @@ def test_the_real_level_part_missing_or_not_set_up_is_said(tmp_path, no_plots):
     text = _run(directory)
     assert "**Not run:** setup_levels.sh failed: no network" in _section(text, SECTIONS[0])
     assert "- tetprobe_bench levels (samples/bench/run_levels.sh): setup_levels.sh failed" in text
+
+
+def test_real_level_placement_checks_each_requirement_per_count(tmp_path, no_plots):
+    text = _run(_results(tmp_path))
+    section = _section(text, "## Real levels: placement against simpler choices of the same candidates")
+    # 50: meets all; 100: 0.7 > 0.8 x 0.8 (random) and leak 0.75 > 0.7; 200: lattice 0.5 < 0.6 and reported
+    # 0.35 is 42 % below 0.6; all candidates: leak 0.31 > 0.3.
+    assert "| 50 | 1 | 2 | 1.5 | 0.5 | 0.667 | 1 | 1 | 0.9 | none |" in section
+    assert "| 100 | 0.7 | 0.8 | 0.9 | 0.875 | 0.778 | 0.75 | 1.07 | 0.75 | random, leak |" in section
+    assert "| 200 | 0.6 | 1 | 0.5 | 0.6 | 1.2 | 0.35 | 0.583 | 0.6 | lattice, reported |" in section
+    assert "| all 900 | 0.3 |  |  |  |  |  |  | 0.31 | leak |" in section
+    assert "| fixture_arena | 900 | 4.5 | 3 | 2 of 3 | 2 of 3 | 2 of 3 | 2 of 3 | 0.3 (0.31) |" in section
+    assert "### fixture_missing: not run" in section
+    digest = (tmp_path / "readme_section.md").read_text()
+    assert "**Placement on the real levels**" in digest
+    assert "| fixture_arena | 900 | 4.5 | 3 | 2 of 3 |" in digest

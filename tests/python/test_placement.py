@@ -45,24 +45,102 @@ def test_place_probes_obeys_the_rules_and_reports_its_curve():
     distance, in_pillar = distance_to_surfaces(positions)
     assert not in_pillar.any()
     assert (distance >= 0.2).all()
-    assert curve[0, 1] == 0 and curve[-1, 0] == 40 and curve[0, 0] > 100
-    assert (np.diff(curve[:, 0]) < 0).all()
-    assert curve[-1, 1] > 0
-    # Deterministic for a seed whatever the thread count.
+    # One point per round, counts increasing to the result, errors estimated (non-negative).
+    assert curve[-1, 0] == 40 and curve[0, 0] < 40 and (np.diff(curve[:, 0]) > 0).all()
+    assert (curve[:, 1] >= 0).all() and curve[-1, 1] < curve[0, 1]
+    # Deterministic for a seed whatever the thread count; a smaller target is a prefix of the order.
     again = tetprobe.place_probes(room_scene(), spacing=0.75, margin=0.2, target=40, rays=64, bounces=1, seed=2,
                                   threads=1)
     assert again.positions.tobytes() == positions.tobytes()
     assert again.error_curve.tobytes() == curve.tobytes()
+    fewer = tetprobe.place_probes(room_scene(), spacing=0.75, margin=0.2, target=25, rays=64, bounces=1, seed=2)
+    assert fewer.positions.tobytes() == positions[:25].tobytes()
 
 
 def test_place_probes_error_bound_and_walkable():
-    bounded = tetprobe.place_probes(room_scene(), spacing=0.75, margin=0.2, error_bound=0.1, rays=64, bounces=1)
-    assert (bounded.error_curve[:, 1] <= 0.1).all()
-    assert bounded.positions.shape[0] < bounded.error_curve[0, 0]
+    bounded = tetprobe.place_probes(room_scene(), spacing=0.75, margin=0.2, error_bound=0.6, rays=64, bounces=1)
+    assert bounded.error_curve[-1, 1] <= 0.6 < bounded.error_curve[-2, 1]
+    assert bounded.positions.shape[0] == bounded.error_curve[-1, 0]
     walkable = tetprobe.place_probes(room_scene(), mode="walkable", walk_height=(0.0, 1.0), spacing=0.75, margin=0.2,
                                      error_bound=0)
-    assert walkable.positions.shape[0] > 20
+    assert walkable.positions.shape[0] > 20 and walkable.error_curve.shape[0] == 0  # every candidate, unbaked
     assert (walkable.positions[:, 1] <= 1.0).all()  # within the band above the floor (y = 0)
+
+
+def courtyard():
+    """An 8 x 8 courtyard open to the sky, walls 3 high, lit by a low sun: the south wall's shadow cuts the
+    air above the floor with a sharp edge."""
+    scene = Scene()
+    scene.add_mesh(np.array([[0, 0, 0], [0, 0, 8], [8, 0, 8], [8, 0, 0]], np.float32),
+                   np.array([[0, 1, 2], [0, 2, 3]], np.uint32), two_sided=False)
+    quad = np.array([[0, 1, 2], [0, 2, 3]], np.uint32)
+    for wall in ([[0, 0, 0], [8, 0, 0], [8, 3, 0], [0, 3, 0]], [[8, 0, 8], [0, 0, 8], [0, 3, 8], [8, 3, 8]],
+                 [[0, 0, 8], [0, 0, 0], [0, 3, 0], [0, 3, 8]], [[8, 0, 0], [8, 0, 8], [8, 3, 8], [8, 3, 0]]):
+        scene.add_mesh(np.array(wall, np.float32), quad, two_sided=False)
+    direction = np.array([0.3, -0.6, 0.74])
+    scene.add_directional_light(direction / np.linalg.norm(direction), (1, 1, 1), intensity=3)
+    scene.set_sky(color=(0.25, 0.3, 0.4))
+    return scene
+
+
+LUMINANCE_NORMALS = np.array([[1, 0, 0], [-1, 0, 0], [0, 1, 0], [0, -1, 0], [0, 0, 1], [0, 0, -1]], np.float64)
+
+
+def luminance6(sh):
+    """Luminance irradiance for the 6 axis normals of SH[N, 27] (the real-level benchmark's quantity)."""
+    c0, c1, c2, c20, c22 = 0.282094791773878, 0.48860251190292, 1.092548430592079, 0.315391565252520, 0.546274215296039
+    band = np.array([np.pi] + [2 * np.pi / 3] * 3 + [np.pi / 4] * 5)
+    rows = []
+    for x, y, z in LUMINANCE_NORMALS:
+        basis = np.array([c0, c1 * y, c1 * z, c1 * x, c2 * x * y, c2 * y * z, c20 * (3 * z * z - 1), c2 * x * z,
+                          c22 * (x * x - y * y)]) * band
+        rows.append(np.concatenate([w * basis for w in (0.2126, 0.7152, 0.0722)]))
+    return sh.astype(np.float64) @ np.array(rows).T
+
+
+def measured_error(scene, probes, points, reference):
+    """RMS over points and normals of |interpolated - reference| luminance irradiance over its mean, the
+    probes baked with 256 rays."""
+    sh = tetprobe.bake(scene, probes, rays=256, bounces=1, seed=99, threads=2)
+    interpolated, _ = tetprobe.Store.build(probes, sh).interpolate(points)
+    expected = luminance6(reference)
+    return float(np.sqrt(((luminance6(interpolated) - expected) ** 2).mean()) / expected.mean())
+
+
+def test_placement_beats_random_picks_and_reports_what_a_reference_measures():
+    scene = courtyard()
+    placed = tetprobe.place_probes(scene, mode="walkable", spacing=0.5, target=60, bounces=1, seed=3, threads=2)
+    candidates = tetprobe.place_probes(scene, mode="walkable", spacing=0.5, error_bound=0).positions
+    rng = np.random.default_rng(11)
+    points = np.column_stack([rng.uniform(0.1, 7.9, 400), rng.uniform(0.1, 2.0, 400),
+                              rng.uniform(0.1, 7.9, 400)]).astype(np.float32)
+    reference = tetprobe.bake(scene, points, rays=1024, bounces=1, seed=12, threads=2)
+    smart = measured_error(scene, placed.positions, points, reference)
+    random = np.mean([measured_error(scene, candidates[np.random.default_rng(seed).choice(len(candidates), 60,
+                                                                                          replace=False)],
+                                     points, reference) for seed in (1, 2, 3)])
+    assert smart < 0.8 * random, (smart, random)
+    reported = placed.error_curve[-1, 1]
+    assert 0.7 * smart < reported < 1.3 * smart, (reported, smart)
+
+
+def test_playable_seeds_keep_the_space_they_reach():
+    """Two closed rooms, not connected: a seed in the first keeps only its candidates."""
+    scene = Scene()
+    for lo, hi in (((0, 0, 0), (4, 3, 4)), ((6, 0, 0), (10, 3, 4))):
+        scene.add_mesh(box_vertices(np.array(lo, np.float32), np.array(hi, np.float32)),
+                       BOX_TRIANGLES[:, ::-1].copy(), two_sided=False)
+    every = tetprobe.place_probes(scene, mode="walkable", error_bound=0).positions
+    scene.set_playable_seeds(np.array([[1.2, 0.4, 2.1]], np.float32))
+    reached = tetprobe.place_probes(scene, mode="walkable", error_bound=0).positions
+    assert 0 < len(reached) == (every[:, 0] < 5).sum() < len(every)
+    assert (reached[:, 0] < 5).all()
+    scene.set_playable_seeds(np.zeros((0, 3), np.float32))
+    assert len(tetprobe.place_probes(scene, mode="walkable", error_bound=0).positions) == len(every)
+    scene.set_playable_seeds(np.array([[50, 0.5, 50]], np.float32))
+    with pytest.raises(Error) as error:
+        tetprobe.place_probes(scene, mode="walkable", error_bound=0)
+    assert error.value.status == Status.SCENE and "1 playable seeds" in str(error.value)
 
 
 def test_place_probes_bad_input_and_cancel():
@@ -72,12 +150,21 @@ def test_place_probes_bad_input_and_cancel():
     assert error.value.status == Status.INVALID_ARGUMENT and "spacing" in str(error.value)
     with pytest.raises(Error) as error:
         tetprobe.place_probes(scene, spacing=0.75, target=100000)
-    assert error.value.status == Status.INVALID_ARGUMENT and "target_count" in str(error.value)
+    assert error.value.status == Status.INVALID_ARGUMENT and "target_count 100000" in str(error.value)
     with pytest.raises(Error) as error:
         tetprobe.place_probes(scene, margin=50)
     assert error.value.status == Status.INVALID_ARGUMENT and "larger than the scene" in str(error.value)
+    with pytest.raises(Error) as error:  # a spacing past what memory holds names the count
+        tetprobe.place_probes(scene, spacing=0.0005)
+    assert error.value.status == Status.INVALID_ARGUMENT and "raise the spacing" in str(error.value)
+    with pytest.raises(Error) as error:  # one lattice point over the room: refused, never a silent single probe
+        tetprobe.place_probes(scene, spacing=1000, target=1)
+    assert error.value.status == Status.DEGENERATE and "1 points tested" in str(error.value)
     with pytest.raises(Error) as error:
-        tetprobe.place_probes(scene, spacing=0.75, target=40, progress=lambda fraction, stage: stage == "prune")
+        tetprobe.place_probes(scene, spacing=0.75, target=40, rays=1)
+    assert error.value.status == Status.INVALID_ARGUMENT
+    with pytest.raises(Error) as error:
+        tetprobe.place_probes(scene, spacing=0.75, target=40, progress=lambda fraction, stage: stage == "select")
     assert error.value.status == Status.CANCELLED
     # A two-sided closed room is a solid block: nothing is left to place probes in.
     with pytest.raises(Error) as error:
@@ -131,7 +218,7 @@ def test_cli_place_writes_probes_and_curve(tmp_path):
     rows = np.loadtxt(out, delimiter=",", ndmin=2)
     assert rows.shape == (60, 3)
     points = json.loads(curve.read_text())["error_curve"]
-    assert points[-1]["probes"] == 60 and points[0]["error"] == 0
+    assert points[-1]["probes"] == 60 and points[0]["probes"] < 60 and points[0]["error"] > points[-1]["error"]
     # The two rooms' shared wall (x in 4..4.2) holds no probe.
     assert not ((rows[:, 0] > 4.0) & (rows[:, 0] < 4.2)).any()
     bad = subprocess.run([CLI, "place", os.path.join(SCENES, "two_rooms.json"), "-o", str(tmp_path / "bad.csv"),
@@ -148,7 +235,7 @@ def test_cancelled_placement_writes_nothing():
     options = _native.PlacementOptions()
     _native.check(_native.lib.tp_placement_options_init(ctypes.byref(options)))
     options.spacing, options.target_count, options.error_bound = 0.75, 40, 0
-    options.progress = _native.ProgressFn(lambda user, fraction, stage: 1 if stage == b"prune" else 0)
+    options.progress = _native.ProgressFn(lambda user, fraction, stage: 1 if stage == b"select" else 0)
     bound = ctypes.c_size_t()
     _native.check(_native.lib.tp_place_probes_bound(scene._live(), ctypes.byref(options), ctypes.byref(bound)))
     assert bound.value == 256

@@ -812,17 +812,17 @@ TEST_CASE("placement: walkable columns stand along the scene's up", "[scene][imp
     rules.spacing = 0.75;
     rules.margin = 0.2;
     rules.walk_max_height = 1.5;
-    const Candidates expected = find_candidates(upright, rules, 2, Progress{});
+    const Candidates expected = find_candidates(upright, rules, 1, 2, Progress{});
     REQUIRE(expected.positions.size() / 3 > 100);
     for (UpAxis up : {UpAxis::pos_z, UpAxis::neg_z, UpAxis::pos_x, UpAxis::neg_y}) {
         INFO("up " << up_axis_name(up));
         const AxisTurn turn = turn_between(UpAxis::pos_y, up);
         Scene turned = upright.meshes_turned(turn);
         CHECK(turned.up() == up);
-        const Candidates got = find_candidates(turned, rules, 2, Progress{});
-        CHECK(candidate_bound(turned, rules) == expected.grid_points);
+        const Candidates got = find_candidates(turned, rules, 1, 2, Progress{});
+        CHECK(candidate_bound(turned, rules) == expected.tested);
         REQUIRE(got.positions.size() == expected.positions.size());
-        REQUIRE(got.held_out.size() == expected.held_out.size());
+        REQUIRE(got.validation.size() == expected.validation.size());
         for (size_t i = 0; i < got.positions.size(); i += 3) {
             float want[3];
             turn.apply(&expected.positions[i], want);
@@ -830,7 +830,7 @@ TEST_CASE("placement: walkable columns stand along the scene's up", "[scene][imp
         }
         // Up matters: with +y assumed, the turned room's floors are walls and the answer differs.
         turned.set_up(UpAxis::pos_y);
-        if (up != UpAxis::neg_y) CHECK(find_candidates(turned, rules, 2, Progress{}).positions.size() != got.positions.size());
+        if (up != UpAxis::neg_y) CHECK(find_candidates(turned, rules, 1, 2, Progress{}).positions.size() != got.positions.size());
     }
 }
 

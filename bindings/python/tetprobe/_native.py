@@ -133,7 +133,8 @@ class PlacementOptions(Structure):
     _fields_ = [("struct_size", c_uint32), ("mode", c_uint32), ("spacing", c_float), ("margin", c_float),
                 ("walk_min_height", c_float), ("walk_max_height", c_float), ("target_count", c_uint32),
                 ("error_bound", c_float), ("rays", c_uint32), ("bounces", c_uint32), ("seed", c_uint64),
-                ("threads", c_uint32), ("progress", ProgressFn), ("progress_user", c_void_p)]
+                ("threads", c_uint32), ("progress", ProgressFn), ("progress_user", c_void_p),
+                ("light_clearance", c_float)]
 
 
 _status = c_int
@@ -216,6 +217,7 @@ PROTOTYPES = (
     ("tp_scene_set_sky_sh", _status, (_handle, _buffer)),
     ("tp_scene_probes", _status, (_handle, POINTER(c_void_p), POINTER(c_size_t))),
     ("tp_scene_set_probes", _status, (_handle, _buffer, c_size_t)),
+    ("tp_scene_set_playable_seeds", _status, (_handle, _buffer, c_size_t)),
     ("tp_bake_options_init", _status, (POINTER(BakeOptions),)),
     ("tp_bake_plan", _status, (_handle, _buffer, c_size_t, c_size_t, POINTER(BakeOptions), POINTER(EffectsPlan),
                                POINTER(c_char), c_size_t)),

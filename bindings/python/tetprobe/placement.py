@@ -10,8 +10,8 @@ from ._arrays import UINT32_MAX, UINT64_MAX, Progress, choice, integer, number, 
 from ._native import check, lib
 from .scene import scene_argument
 
-#: place_probes' result: positions[N, 3] float32 and error_curve[K, 2] float32 of (probe count, error),
-#: from every candidate (error 0) down to the result.
+#: place_probes' result: positions[N, 3] float32 in the order chosen (the first k are the placement for k
+#: probes) and error_curve[K, 2] float32 of (probe count, estimated error), counts increasing to the result.
 Placement = collections.namedtuple("Placement", ["positions", "error_curve"])
 
 _MODES = {"whole": _native.PLACEMENT_WHOLE, "walkable": _native.PLACEMENT_WALKABLE}
@@ -19,19 +19,24 @@ _FIXES = {"drop": _native.INSIDE_DROP, "push": _native.INSIDE_PUSH}
 
 
 def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0, 2.0), target=0, error_bound=None,
-                 rays=128, bounces=2, seed=0, threads=0, progress=None):
+                 rays=128, bounces=2, seed=0, threads=0, progress=None, light_clearance=1.0):
     """Proposes probe positions for a scene -> Placement(positions[N, 3], error_curve[K, 2]).
 
-    Candidates on a grid of `spacing` (world units) over the scene (mode "whole") or within
-    walk_height=(min, max) world units above upward-facing (+y) surfaces (mode "walkable"), none inside geometry
-    or within `margin` (world units) of a surface, baked with `rays` per candidate and `bounces`, then
-    pruned to `target` probes or until the error would exceed error_bound (default 0.05 without a
-    target, none with one; 0 = none). positions[N, 3] are float32 world units; error_curve[K, 2] holds
-    (probe count, error) from all candidates down. The same `seed` gives the same result whatever the
-    `threads` count (0 = all cores); progress(fraction, stage) may return True to cancel
-    (Error(CANCELLED)); `scene` is a Scene or the path of a scene file."""
+    Candidates on a lattice of `spacing` (world units) over the scene (mode "whole") or across
+    walk_height=(min, max) world units above upward-facing surfaces (the scene's up; mode "walkable"), none inside
+    geometry or within `margin` (world units) of a surface, only those connected to the scene's playable
+    seeds when it has some; baked with `rays` per candidate (in two halves) and `bounces`, then chosen by
+    greedy insertion up to `target` probes or until the estimated error is at most error_bound (default
+    0.25 without a target, none with one; 0 = none; with neither, every candidate is returned unbaked).
+    The error: RMS over validation points and the 6 axis normals of the luminance irradiance's
+    interpolation error, relative to its mean, with the bake's noise taken out; points closer than
+    `light_clearance` to a point or spot light do not count. positions[N, 3] are float32 world units in
+    the order chosen (the first k are the placement for k probes); error_curve[K, 2] holds (probe count,
+    error), counts increasing to the result. The same `seed` gives the same result whatever the `threads`
+    count (0 = all cores); progress(fraction, stage) may return True to cancel (Error(CANCELLED));
+    `scene` is a Scene or the path of a scene file."""
     options = _placement_options(mode, spacing, margin, walk_height, target, error_bound, rays, bounces, seed,
-                                 threads)
+                                 threads, light_clearance)
     callback = Progress(progress)
     with scene_argument(scene) as scene:
         bound = _placement_bound(scene, options)
@@ -46,7 +51,8 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
     return Placement(positions[:count.value].copy(), curve[:points.value].copy())
 
 
-def _placement_options(mode, spacing, margin, walk_height, target, error_bound, rays, bounces, seed, threads):
+def _placement_options(mode, spacing, margin, walk_height, target, error_bound, rays, bounces, seed, threads,
+                       light_clearance=None):
     """place_probes' arguments as a tp_placement_options (without progress)."""
     options = _native.PlacementOptions()
     check(lib.tp_placement_options_init(ctypes.byref(options)))
@@ -61,11 +67,13 @@ def _placement_options(mode, spacing, margin, walk_height, target, error_bound, 
     options.bounces = integer(bounces, "bounces", 0, UINT32_MAX)
     options.seed = integer(seed, "seed", 0, UINT64_MAX)
     options.threads = integer(threads, "threads", 0, UINT32_MAX)
+    if light_clearance is not None:
+        options.light_clearance = number(light_clearance, "light_clearance")
     return options
 
 
 def _placement_bound(scene, options):
-    """tp_place_probes_bound: the most probes (and curve points less one) a placement with options returns.
+    """tp_place_probes_bound: the most probes (and curve points) a placement with options returns.
     The command line calls it on its own to name the failing step as the C tool does."""
     bound = ctypes.c_size_t()
     check(lib.tp_place_probes_bound(scene._live(), ctypes.byref(options), ctypes.byref(bound)))

@@ -181,6 +181,14 @@ class Scene(NativeHandle):
         points = np.ascontiguousarray(points)
         check(lib.tp_scene_set_probes(self._live(), points, points.shape[0]))
 
+    def set_playable_seeds(self, positions):
+        """Points known to be where objects go (spawn points), positions[N, 3] float32 world units (N = 0
+        clears them): place_probes then keeps only candidates connected to a seed. A Quake 3 level loaded
+        with Scene.load has its spawn points as seeds."""
+        points, _, _ = rows(positions, 3, "positions")
+        points = np.ascontiguousarray(points)
+        check(lib.tp_scene_set_playable_seeds(self._live(), points if points.shape[0] else None, points.shape[0]))
+
 
 def _path_argument(value, name):
     return path(value, name)

@@ -1,0 +1,381 @@
+#include "bake/probe_selection.h"
+
+#include "bake/insertion_gain.h"
+#include "bake/parallel_jobs.h"
+#include "bake/sampling.h"
+#include "bake/store_builder.h"
+#include "core/error.h"
+#include "core/store_data.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <memory>
+#include <numeric>
+#include <tuple>
+#include <unordered_map>
+
+namespace tetprobe {
+
+namespace {
+
+// The well-spread start (its hull holds most candidates, so few insertions fall outside the hull, where
+// the gain's model is a cell's split only), the batches' largest growth, and the candidates of a cell
+// whose gain is computed (half the largest residuals, half spread over the cell).
+constexpr uint32_t kStartProbes = 16;
+constexpr double kGrowth = 0.25;
+constexpr size_t kTrialsPerCell = 8;
+
+// A cell by its vertices (candidate indices, sorted; an outer cell's marker kept): the same key in two
+// rounds is the same cell.
+using CellKey = std::array<uint32_t, 4>;
+struct CellKeyHash {
+    size_t operator()(const CellKey& k) const {
+        uint64_t h = 0;
+        for (uint32_t v : k) h = mix64(h ^ v);
+        return size_t(h);
+    }
+};
+
+CellKey key_of(const RoundState& s, uint32_t cell) {
+    uint32_t v[4], n[4];
+    s.store->cell(cell, v, n);
+    CellKey k;
+    for (int i = 0; i < 4; ++i) k[size_t(i)] = v[i] < s.candidate_of_stored.size() ? s.candidate_of_stored[v[i]] : v[i];
+    std::sort(k.begin(), k.end());
+    return k;
+}
+
+// The best insertion a cell offers this round.
+struct CellChoice {
+    bool significant = false;
+    double key = 0;          // the trusted gain, or the coverage
+    uint32_t candidate = 0;
+    std::vector<uint32_t> cavity;
+};
+
+class Selector {
+public:
+    Selector(const SignalPoints& candidates, const SignalPoints& validation, uint32_t threads)
+        : c_(candidates), v_(validation), threads_(std::max(1u, threads)) {
+        count_ = c_.positions.size() / 3;
+        double sum = 0;
+        size_t n = 0;
+        for (size_t i = 0; i < v_.positions.size() / 3; ++i)
+            if (v_.counted[i]) {
+                for (int k = 0; k < kSignalSize; ++k) sum += v_.signal.value[kSignalSize * i + size_t(k)];
+                ++n;
+            }
+        mean_ = n ? sum / double(kSignalSize * n) : 0.0;
+    }
+
+    size_t count() const { return count_; }
+
+    // Farthest points among the counted candidates, from the one nearest their centroid.
+    std::vector<uint32_t> start(size_t n) const {
+        std::vector<uint32_t> pool;
+        for (uint32_t i = 0; i < count_; ++i)
+            if (c_.counted[i]) pool.push_back(i);
+        std::vector<uint32_t> chosen;
+        if (pool.empty() || n == 0) return chosen;
+        double centre[3] = {0, 0, 0};
+        for (uint32_t i : pool)
+            for (int a = 0; a < 3; ++a) centre[a] += double(c_.positions[3 * size_t(i) + size_t(a)]) / double(pool.size());
+        std::vector<double> distance(pool.size());
+        auto squared = [&](uint32_t i, const double* q) {
+            double d = 0;
+            for (int a = 0; a < 3; ++a) d += (c_.positions[3 * size_t(i) + size_t(a)] - q[a]) * (c_.positions[3 * size_t(i) + size_t(a)] - q[a]);
+            return d;
+        };
+        size_t next = 0;
+        for (size_t k = 0; k < pool.size(); ++k)
+            if (squared(pool[k], centre) < squared(pool[next], centre)) next = k;
+        std::fill(distance.begin(), distance.end(), INFINITY);
+        while (chosen.size() < std::min(n, pool.size())) {
+            chosen.push_back(pool[next]);
+            double q[3];
+            for (int a = 0; a < 3; ++a) q[a] = c_.positions[3 * size_t(pool[next]) + size_t(a)];
+            size_t far = 0;
+            for (size_t k = 0; k < pool.size(); ++k) {
+                distance[k] = std::min(distance[k], squared(pool[k], q));
+                if (distance[k] > distance[far]) far = k;
+            }
+            next = far;
+        }
+        return chosen;
+    }
+
+    std::unique_ptr<Store> build(const std::vector<uint32_t>& chosen) const {
+        std::vector<float> positions(3 * chosen.size()), sh(27 * chosen.size(), 0.0f);
+        for (size_t i = 0; i < chosen.size(); ++i) std::copy_n(&c_.positions[3 * size_t(chosen[i])], 3, &positions[3 * i]);
+        const StoreData data = build_store_data(positions.data(), 12, sh.data(), 108, chosen.size(), BuildSettings{});
+        const std::vector<uint8_t> blob = write_store_blob(data);
+        return Store::load(blob.data(), blob.size());
+    }
+
+    // Every point's cell, probes and weights (each query from the start grid, so the cell a point on a
+    // shared facet lands in does not depend on how the batch was split among threads).
+    void locate(const Store& store, const std::vector<float>& positions, std::vector<int32_t>* cells,
+                std::vector<uint32_t>* probes, std::vector<float>* weights) const {
+        const size_t n = positions.size() / 3;
+        cells->assign(n, -1);
+        probes->assign(4 * n, 0);
+        weights->assign(4 * n, 0.0f);
+        BatchSettings batch;
+        batch.threads = threads_;
+        size_t first_outside = 0;
+        if (n) store.weights_batch(n, positions.data(), 12, cells->data(), 4, probes->data(), 16, weights->data(), 16, batch,
+                                   &first_outside);
+    }
+
+    // The error estimate at the validation points (see probe_selection.h).
+    double estimate(const Store& store, const std::vector<uint32_t>& chosen) const {
+        if (!(mean_ > 0)) return 0.0;
+        std::vector<int32_t> cells;
+        std::vector<uint32_t> probes;
+        std::vector<float> weights;
+        locate(store, v_.positions, &cells, &probes, &weights);
+        double sum = 0;
+        size_t n = 0;
+        for (size_t i = 0; i < v_.positions.size() / 3; ++i) {
+            if (!v_.counted[i]) continue;
+            double r[kSignalSize], noise = v_.signal.noise[i];
+            for (int k = 0; k < kSignalSize; ++k) r[k] = v_.signal.value[kSignalSize * i + size_t(k)];
+            for (int s = 0; s < 4; ++s) {
+                const double w = weights[4 * i + size_t(s)];
+                if (w == 0) continue;
+                const uint32_t c = chosen[store.probe_source(probes[4 * i + size_t(s)])];
+                for (int k = 0; k < kSignalSize; ++k) r[k] -= w * c_.signal.value[kSignalSize * size_t(c) + size_t(k)];
+                noise += w * w * c_.signal.noise[c];
+            }
+            for (double x : r) sum += x * x;
+            sum -= noise;
+            ++n;
+        }
+        return n ? std::sqrt(std::max(0.0, sum / double(kSignalSize * n))) / mean_ : 0.0;
+    }
+
+    // What the round knows about every candidate (insertion_gain.h).
+    void evaluate(const Store& store, const std::vector<uint32_t>& chosen, const std::vector<uint8_t>& in_set,
+                  RoundState* s) const {
+        s->store = &store;
+        const uint32_t stored = store.header().probe_count;
+        s->candidate_of_stored.resize(stored);
+        s->probe_noise.resize(stored);
+        for (uint32_t p = 0; p < stored; ++p) {
+            s->candidate_of_stored[p] = chosen[store.probe_source(p)];
+            s->probe_noise[p] = c_.signal.noise[s->candidate_of_stored[p]];
+        }
+        locate(store, c_.positions, &s->cell, &s->probes, &s->weights);
+        s->residual.assign(kSignalSize * count_, 0.0);
+        s->noise.assign(count_, 0.0);
+        s->active.assign(count_, 0);
+        s->local.resize(3 * count_);
+        const double* origin = store.header().origin;
+        for (size_t i = 0; i < count_; ++i) {
+            for (int a = 0; a < 3; ++a) s->local[3 * i + size_t(a)] = float(double(c_.positions[3 * i + size_t(a)]) - origin[a]);
+            if (in_set[i]) continue;
+            s->active[i] = c_.counted[i] && s->cell[i] >= 0;
+            double* r = &s->residual[kSignalSize * i];
+            double noise = c_.signal.noise[i];
+            for (int k = 0; k < kSignalSize; ++k) r[k] = c_.signal.value[kSignalSize * i + size_t(k)];
+            for (int q = 0; q < 4; ++q) {
+                const double w = s->weights[4 * i + size_t(q)];
+                if (w == 0) continue;
+                const uint32_t c = s->candidate_of_stored[s->probes[4 * i + size_t(q)]];
+                for (int k = 0; k < kSignalSize; ++k) r[k] -= w * c_.signal.value[kSignalSize * size_t(c) + size_t(k)];
+                noise += w * w * c_.signal.noise[c];
+            }
+            s->noise[i] = noise;
+        }
+        prepare_round(*s);
+    }
+
+    // Up to `want` candidates to insert, best first, no two in cells that share a probe. A cell whose
+    // choice was made in an earlier round keeps it while every cell the choice read (its cavity and the
+    // cells around it) is still there: the gain depends on nothing else, so only cells near the last
+    // insertions are computed again.
+    std::vector<uint32_t> choose(const RoundState& s, size_t want) {
+        const uint32_t cell_count = s.store->header().cell_count;
+        std::vector<CellKey> keys(cell_count);
+        std::unordered_map<CellKey, uint32_t, CellKeyHash> current;
+        current.reserve(cell_count);
+        for (uint32_t c = 0; c < cell_count; ++c) current.emplace(keys[c] = key_of(s, c), c);
+        std::vector<uint32_t> cells;
+        for (uint32_t c = 0; c + 1 < s.cell_start.size(); ++c)
+            if (s.cell_start[c + 1] > s.cell_start[c]) cells.push_back(c);
+        std::vector<CellChoice> choices(cells.size());
+        std::vector<std::vector<CellKey>> supports(cells.size());
+        std::vector<size_t> fresh;
+        for (size_t k = 0; k < cells.size(); ++k) {
+            const auto it = cache_.find(keys[cells[k]]);
+            bool valid = it != cache_.end();
+            for (size_t q = 0; valid && q < it->second.support.size(); ++q) valid = current.count(it->second.support[q]) > 0;
+            if (!valid) {
+                fresh.push_back(k);
+                continue;
+            }
+            CellChoice& c = choices[k];
+            c.significant = it->second.significant, c.key = it->second.key, c.candidate = it->second.candidate;
+            for (const CellKey& key : it->second.cavity) c.cavity.push_back(current.at(key));
+            supports[k] = std::move(it->second.support);
+        }
+        run_jobs(fresh.size(), threads_, [&](size_t f) {
+            const size_t k = fresh[f];
+            choices[k] = best_in_cell(s, cells[k]);
+            std::vector<uint32_t> read = choices[k].cavity;
+            for (uint32_t c : choices[k].cavity) {
+                uint32_t v[4], n[4];
+                s.store->cell(c, v, n);
+                for (uint32_t x : n)
+                    if (x < cell_count) read.push_back(x);
+            }
+            std::sort(read.begin(), read.end());
+            read.erase(std::unique(read.begin(), read.end()), read.end());
+            for (uint32_t c : read) supports[k].push_back(keys[c]);
+        }, {}, "select");
+        cache_.clear();
+        for (size_t k = 0; k < cells.size(); ++k) {
+            CachedChoice& e = cache_[keys[cells[k]]];
+            e.significant = choices[k].significant, e.key = choices[k].key, e.candidate = choices[k].candidate;
+            for (uint32_t c : choices[k].cavity) e.cavity.push_back(keys[c]);
+            e.support = std::move(supports[k]);
+        }
+        std::vector<size_t> order(cells.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::sort(order.begin(), order.end(), [&](size_t a, size_t b) {
+            const CellChoice &x = choices[a], &y = choices[b];
+            return std::make_tuple(!x.significant, -x.key, x.candidate) < std::make_tuple(!y.significant, -y.key, y.candidate);
+        });
+        std::vector<uint8_t> blocked(s.candidate_of_stored.size(), 0);
+        std::vector<uint32_t> batch;
+        bool significant = false;
+        for (size_t k : order) {
+            if (batch.size() == want) break;
+            const CellChoice& choice = choices[k];
+            // Coverage only where nothing stands out: a round with trusted gains waits for the next
+            // round's measurements rather than spend probes on guesses.
+            if (!choice.significant && significant) break;
+            uint32_t v[4], n[4];
+            s.store->cell(choice.cavity.front(), v, n);
+            bool free = true;
+            for (uint32_t p : v) free = free && (p >= blocked.size() || !blocked[p]);
+            if (!free) continue;
+            for (uint32_t p : v)
+                if (p < blocked.size()) blocked[p] = 1;
+            batch.push_back(choice.candidate);
+            significant = significant || choice.significant;
+        }
+        return batch;
+    }
+
+private:
+    CellChoice best_in_cell(const RoundState& s, uint32_t cell) const {
+        const uint32_t* first = &s.cell_members[s.cell_start[cell]];
+        const size_t members = s.cell_start[cell + 1] - s.cell_start[cell];
+        const size_t per_cell = kTrialsPerCell;
+        std::vector<uint32_t> trials;
+        if (members <= per_cell) {
+            trials.assign(first, first + members);
+        } else {
+            std::vector<std::pair<double, uint32_t>> excess(members);
+            for (size_t m = 0; m < members; ++m) {
+                const uint32_t x = first[m];
+                double rr = 0;
+                for (int k = 0; k < kSignalSize; ++k) rr += s.residual[kSignalSize * size_t(x) + size_t(k)] * s.residual[kSignalSize * size_t(x) + size_t(k)];
+                excess[m] = {-(rr - s.noise[x]), x};
+            }
+            std::partial_sort(excess.begin(), excess.begin() + per_cell / 2, excess.end());
+            for (size_t m = 0; m < per_cell / 2; ++m) trials.push_back(excess[m].second);
+            for (size_t m = 0; m < per_cell / 2; ++m) trials.push_back(first[(2 * m + 1) * members / per_cell]);
+            std::sort(trials.begin(), trials.end());
+            trials.erase(std::unique(trials.begin(), trials.end()), trials.end());
+        }
+        CellChoice best, cover;
+        for (uint32_t x : trials) {
+            InsertionGain g = insertion_gain(s, x);
+            const double trusted = g.gain - kSignificance * g.deviation;
+            if (trusted > 0 && (!best.significant || trusted > best.key)) {
+                best.significant = true, best.key = trusted, best.candidate = x, best.cavity = g.cavity;
+            }
+            if (cover.cavity.empty() || g.coverage > cover.key) cover.key = g.coverage, cover.candidate = x, cover.cavity = std::move(g.cavity);
+        }
+        return best.significant ? best : cover;
+    }
+
+    struct CachedChoice {
+        bool significant = false;
+        double key = 0;
+        uint32_t candidate = 0;
+        std::vector<CellKey> cavity, support;
+    };
+
+    const SignalPoints& c_;
+    const SignalPoints& v_;
+    std::unordered_map<CellKey, CachedChoice, CellKeyHash> cache_;
+    uint32_t threads_;
+    size_t count_ = 0;
+    double mean_ = 0;
+};
+
+}  // namespace
+
+Selection select_probes(const SignalPoints& candidates, const SignalPoints& validation, const SelectionSettings& settings,
+                        const Progress& progress) {
+    Selector selector(candidates, validation, settings.threads);
+    const size_t count = selector.count();
+    const size_t target = settings.target_count ? std::min<size_t>(settings.target_count, count) : count;
+    Selection result;
+    result.order = selector.start(std::min<size_t>(kStartProbes, target));
+    std::vector<uint8_t> in_set(count, 0);
+    for (uint32_t i : result.order) in_set[i] = 1;
+    progress.report(0.0, "select");
+    const double log_span = std::log(std::max(2.0, double(target) / kStartProbes));
+    // Candidates no round would insert (none counts) fill a target beyond the counted ones, in order.
+    auto fill = [&] {
+        for (uint32_t i = 0; i < count && result.order.size() < target; ++i)
+            if (!in_set[i]) result.order.push_back(i), in_set[i] = 1;
+    };
+    if (result.order.empty()) fill();
+    std::vector<uint32_t> previous_batch;
+    std::unique_ptr<Store> store = selector.build(result.order);
+    for (;;) {
+        const double error = selector.estimate(*store, result.order);
+        result.curve.push_back({uint32_t(result.order.size()), error});
+        const size_t n = result.order.size();
+        progress.report(settings.target_count ? std::log(double(n) / kStartProbes) / log_span
+                                              : std::min(1.0, settings.error_bound / std::max(error, 1e-300)),
+                        "select");
+        if (n >= target || (!settings.target_count && settings.error_bound > 0 && error <= settings.error_bound)) break;
+        RoundState state;
+        selector.evaluate(*store, result.order, in_set, &state);
+        const size_t want = std::min(target - n, std::max<size_t>(1, size_t(std::ceil(kGrowth * double(n)))));
+        std::vector<uint32_t> batch = selector.choose(state, want);
+        if (batch.empty()) {
+            fill();
+            if (result.order.size() == n) break;
+        }
+        for (uint32_t i : batch) result.order.push_back(i), in_set[i] = 1;
+        previous_batch = std::move(batch);
+        store = selector.build(result.order);
+    }
+    // A bound met inside the last batch: the shortest prefix of it that meets it.
+    if (!settings.target_count && settings.error_bound > 0 && result.curve.size() > 1 &&
+        result.curve.back().error <= settings.error_bound && !previous_batch.empty()) {
+        const size_t full = result.order.size(), base = full - previous_batch.size();
+        size_t low = base, high = full;  // low fails (or is the previous round), high meets
+        double high_error = result.curve.back().error;
+        while (high - low > 1) {
+            const size_t mid = (low + high) / 2;
+            const std::vector<uint32_t> prefix(result.order.begin(), result.order.begin() + std::ptrdiff_t(mid));
+            const double e = selector.estimate(*selector.build(prefix), prefix);
+            if (e <= settings.error_bound) high = mid, high_error = e;
+            else low = mid;
+        }
+        result.order.resize(high);
+        result.curve.back() = {uint32_t(high), high_error};
+    }
+    return result;
+}
+
+}  // namespace tetprobe
