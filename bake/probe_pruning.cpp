@@ -14,6 +14,8 @@
 #include <cstdint>
 #include <memory>
 #include <numeric>
+#include <thread>
+#include <vector>
 #include <tuple>
 
 namespace tetprobe {
@@ -54,14 +56,26 @@ public:
         return s;
     }
 
+    // range(begin, end) over [0, count) split into contiguous ranges on up to threads_ threads (the run
+    // time's batches never start threads: the bake splits its own). Hint-less queries start from the
+    // grid, so the answers do not depend on the split.
+    template <class Range>
+    void on_threads(size_t count, Range range) const {
+        const size_t parts = std::max<size_t>(1, std::min<size_t>(std::max(1u, threads_), count / 4096));
+        std::vector<std::thread> workers;
+        for (size_t t = 1; t < parts; ++t) workers.emplace_back(range, count * t / parts, count * (t + 1) / parts);
+        range(size_t(0), count / parts);
+        for (std::thread& worker : workers) worker.join();
+    }
+
     // Irradiance coefficients interpolated at every held-out point.
     std::vector<double> interpolate(const SubsetStore& s) const {
         const size_t count = points_.size() / 3;
         std::vector<float> out(27 * count);
-        BatchSettings batch;
-        batch.threads = std::max(1u, threads_);
-        size_t first_outside = 0;
-        s.store->interpolate_batch(count, points_.data(), 12, nullptr, 4, out.data(), 108, batch, &first_outside);
+        on_threads(count, [&](size_t begin, size_t end) {
+            s.store->interpolate_batch(end - begin, &points_[3 * begin], 12, nullptr, 4, &out[27 * begin], 108,
+                                       BatchSettings{}, nullptr);
+        });
         std::vector<double> e(27 * count);
         for (size_t i = 0; i < count; ++i) irradiance_coefficients(&out[27 * i], &e[27 * i]);
         return e;
@@ -116,11 +130,10 @@ public:
         const size_t count = points_.size() / 3;
         std::vector<uint32_t> cell_probes(4 * count);
         std::vector<float> weights(4 * count);
-        BatchSettings batch;
-        batch.threads = std::max(1u, threads_);
-        size_t first_outside = 0;
-        s.store->weights_batch(count, points_.data(), 12, nullptr, 4, cell_probes.data(), 16, weights.data(), 16, batch,
-                               &first_outside);
+        on_threads(count, [&](size_t begin, size_t end) {
+            s.store->weights_batch(end - begin, &points_[3 * begin], 12, nullptr, 4, &cell_probes[4 * begin], 16,
+                                   &weights[4 * begin], 16, BatchSettings{}, nullptr);
+        });
         std::vector<double> weight_squares(s.probes.size(), 0.0);
         for (size_t i = 0; i < 4 * count; ++i)
             weight_squares[s.store->probe_source(cell_probes[i])] += double(weights[i]) * weights[i] * point_weights_[i / 4];

@@ -69,8 +69,7 @@ BatchSettings batch_settings(const tp_batch_options* options) {
         throw Error(Status::invalid_argument, "options->struct_size is not set (use tp_batch_options_init)");
     if (options->flags & ~uint32_t(TP_BATCH_CHAIN_HINTS))
         throw Error(Status::invalid_argument, "unknown batch flags " + std::to_string(options->flags));
-    settings.chain_hints = (options->flags & TP_BATCH_CHAIN_HINTS) != 0;
-    settings.threads = options->threads > 1 ? options->threads : 1;
+    settings.chain_hints = (options->flags & TP_BATCH_CHAIN_HINTS) != 0;  // threads: deprecated, ignored
     return settings;
 }
 
