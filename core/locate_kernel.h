@@ -23,9 +23,11 @@ constexpr size_t kMaxBatchGroup = 64;
 // the store is loaded (so no query tests any of them). Both functions give the same answer for a
 // query, bit for bit, and the same as the exhaustive search inside the hull.
 struct LocateKernel {
-    // One query at a local position, from hint (-1 or out of range: the start grid's cell).
-    Location (*locate)(const Store::Impl& store, const float local[3], int32_t hint);
-    // count <= kMaxBatchGroup queries walked together (several cells' orientations computed at once).
+    // One query at a local position, from hint (-1 or out of range: the start grid's cell), answered
+    // in out (a default Location on entry: answers are written in place, never copied whole).
+    void (*locate)(const Store::Impl& store, const float local[3], int32_t hint, Location& out);
+    // count <= kMaxBatchGroup queries walked together (several cells' orientations computed at once),
+    // out as above.
     void (*locate_batch)(const Store::Impl& store, size_t count, const float (*local)[3], const int32_t* hints,
                          Location* out);
     InstructionSet instruction_set;

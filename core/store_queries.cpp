@@ -16,10 +16,11 @@ namespace tetprobe {
 namespace {
 
 // The one pipeline: count queries (<= kMaxBatchGroup) at local positions from their hints, located
-// and weighed as the store answers them (leak control applied to every located query).
+// and weighed as the store answers them (leak control applied to every located query). out holds
+// default Locations on entry; the answers are written into them in place.
 void answer(const Store::Impl& s, size_t count, const float (*local)[3], const int32_t* hints, Location* out) {
     if (count == 1)
-        out[0] = s.locate.locate(s, local[0], hints[0]);
+        s.locate.locate(s, local[0], hints[0], out[0]);
     else
         s.locate.locate_batch(s, count, local, hints, out);
     if (s.leak_offsets)
@@ -27,13 +28,11 @@ void answer(const Store::Impl& s, size_t count, const float (*local)[3], const i
             if (out[i].status == Status::ok) weigh_by_visibility(s, out[i]);
 }
 
-// One query at a world position.
-Location answer_one(const Store::Impl& s, const float world[3], int32_t hint) {
+// One query at a world position, answered in loc (a default Location).
+void answer_one(const Store::Impl& s, const float world[3], int32_t hint, Location& loc) {
     float local[1][3];
     local_position(s, world, local[0]);
-    Location loc;
     answer(s, 1, local, &hint, &loc);
-    return loc;
 }
 
 // The four probes' SH records, decoded as they are weighed (the encoding's kernel, sh_blend.h).
@@ -88,6 +87,7 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     for (size_t group = 0; group < count; group += kMaxBatchGroup) {
         const size_t n = std::min(kMaxBatchGroup, count - group);
         for (size_t j = 0; j < n; ++j) {
+            located[j] = Location();
             float world[3];
             std::memcpy(world, strided(positions, group + j, position_stride), sizeof world);
             local_position(s, world, local[j]);
@@ -116,7 +116,11 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
 
 }  // namespace
 
-Location Store::locate(const float world_position[3], int32_t hint) const { return answer_one(*impl_, world_position, hint); }
+Location Store::locate(const float world_position[3], int32_t hint) const {
+    Location loc;
+    answer_one(*impl_, world_position, hint, loc);
+    return loc;
+}
 
 Location Store::locate_exhaustive(const float world_position[3], Cells cells) const {
     float q[3];
@@ -125,7 +129,8 @@ Location Store::locate_exhaustive(const float world_position[3], Cells cells) co
 }
 
 Status Store::interpolate(const float world_position[3], int32_t* hint, float out_sh[27], float out_occlusion[4]) const {
-    const Location loc = answer_one(*impl_, world_position, hint ? *hint : -1);
+    Location loc;
+    answer_one(*impl_, world_position, hint ? *hint : -1, loc);
     if (hint) *hint = loc.cell;
     return answer_sh(*impl_, loc, out_sh, out_occlusion);
 }

@@ -137,8 +137,9 @@ struct Avx2LaneOrientations {
         const __m256d t3 = _mm256_sub_pd(_mm256_mul_pd(yi, zj), _mm256_mul_pd(yj, zi));
         return _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(xi, t1), _mm256_mul_pd(xj, t2)), _mm256_mul_pd(xl, t3));
     }
-    __attribute__((target("avx2"))) static inline void of(const float* const P[4][4], const float* const q[4],
-                                                          LaneOrientations& out) {
+    __attribute__((target("avx2"), always_inline)) static inline void of(const float* const P[4][4],
+                                                                         const float* const q[4],
+                                                                         LaneOrientations& out) {
         // The queries element by element (a query's 3 floats may end its buffer).
         const __m256d qx = _mm256_set_pd(q[3][0], q[2][0], q[1][0], q[0][0]);
         const __m256d qy = _mm256_set_pd(q[3][1], q[2][1], q[1][1], q[0][1]);

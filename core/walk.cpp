@@ -36,8 +36,10 @@ constexpr uint32_t kRecentOuterCells = 8;
 inline uint32_t walk_step_cap(const Store::Impl& s) { return s.cell_count + 64; }
 
 // The general walk from cell, steps already taken: every cell kind, every dimension, the fallback.
+// loc is a fresh Location (answers are written in place: a copied Location costs store-forwarding
+// stalls on the common path).
 template <class Index, uint32_t D, bool Avx2>
-Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_t steps);
+void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_t steps, Location& loc);
 
 #define TP_WALK_CLEAR_NAME walk_clear_portable
 #define TP_LOCATE_BATCH_NAME locate_batch_portable
@@ -68,10 +70,9 @@ Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uin
 #endif
 
 template <class Index, uint32_t D, bool Avx2>
-Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_t steps) {
+void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_t steps, Location& loc) {
     const Cells<Index> cells(s);
     const uint32_t step_cap = walk_step_cap(s);
-    Location loc;
     uint32_t previous = kNoCell;
     double last_t = -1.0;       // t of the last outer cell that held the query's moved facet
     bool beyond_hull = false;   // an outer cell found the query strictly beyond its hull facet
@@ -84,7 +85,7 @@ Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uin
             if (v.verdict == InnerView::holds) {
                 set_inner_weights(cells, cell, v, loc, D);
                 loc.steps = steps;
-                return loc;
+                return;
             }
             if (v.verdict == InnerView::flat) {
                 // A zero-volume cell holds no point: hand the query (on its plane) to a neighbour.
@@ -100,7 +101,7 @@ Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uin
                     loc.status = Status::outside;
                     loc.cell = int32_t(cell);
                     loc.steps = steps;
-                    return loc;
+                    return;
                 }
             }
         } else {
@@ -121,12 +122,12 @@ Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uin
                     if (score >= 0) {  // holds it: on a shared edge, the neighbour's weights are the same
                         set_outer_weights(cells, cell, o, loc);
                         loc.steps = steps;
-                        return loc;
+                        return;
                     }
                     if (score >= -kOuterWeightTolerance) {  // in a gap between sweeps, within the tolerance
                         settle_outer_cell(cells, cell, o, q, loc);
                         loc.steps = steps;
-                        return loc;
+                        return;
                     }
                 }
                 const int slot = outer_exit_slot(cells, cell, o.weights, previous);
@@ -134,7 +135,7 @@ Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uin
                     if (!o.holds) break;
                     settle_outer_cell(cells, cell, o, q, loc);
                     loc.steps = steps;
-                    return loc;
+                    return;
                 }
                 next = cells.neighbour(cell, uint32_t(slot));
             }
@@ -149,25 +150,24 @@ Location walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uin
     // Beyond the hull no inner cell holds the point either: searching all cells would end the same.
     if (loc.cell < 0 && loc.status == Status::ok) answer_first_outer_cell(cells, loc);
     loc.steps = steps;
-    return loc;
+    return;
 }
 
 template <class Index, uint32_t D, bool Avx2>
-Location walk(const Store::Impl& s, const float q[3], int32_t hint) {
+void walk(const Store::Impl& s, const float q[3], int32_t hint, Location& loc) {
     const Cells<Index> cells(s);
     uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(q);
     uint32_t steps = 0;
     if (D == 3) {
-        Location loc;
 #ifdef TETPROBE_X86_64
         if (Avx2 ? walk_clear_avx2(cells, &cell, q, &steps, walk_step_cap(s), loc)
                  : walk_clear_portable(cells, &cell, q, &steps, walk_step_cap(s), loc))
-            return loc;
+            return;
 #else
-        if (walk_clear_portable(cells, &cell, q, &steps, walk_step_cap(s), loc)) return loc;
+        if (walk_clear_portable(cells, &cell, q, &steps, walk_step_cap(s), loc)) return;
 #endif
     }
-    return walk_general<Index, D, Avx2>(s, q, cell, steps);
+    walk_general<Index, D, Avx2>(s, q, cell, steps, loc);
 }
 
 template <class Index, uint32_t D, bool Avx2>
@@ -179,7 +179,7 @@ void locate_batch(const Store::Impl& s, size_t count, const float (*q)[3], const
 #endif
         return locate_batch_portable(cells, count, q, hints, out);
     }
-    for (size_t i = 0; i < count; ++i) out[i] = walk<Index, D, Avx2>(s, q[i], hints[i]);
+    for (size_t i = 0; i < count; ++i) walk<Index, D, Avx2>(s, q[i], hints[i], out[i]);
 }
 
 template <class Index, uint32_t D, bool Avx2>

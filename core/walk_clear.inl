@@ -75,7 +75,7 @@ __attribute__((noinline)) void TP_LOCATE_BATCH_NAME(const Cells<Index>& cells, s
                 lane_steps[lane] = 0;
                 return true;
             }
-            out[i] = walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], cell, 0);
+            walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], cell, 0, out[i]);
         }
         return false;
     };
@@ -107,7 +107,6 @@ __attribute__((noinline)) void TP_LOCATE_BATCH_NAME(const Cells<Index>& cells, s
             if ((D[0] > bound) & (D[1] > bound) & (D[2] > bound) & (D[3] > bound)) {
                 const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
                 Location& loc = out[i];
-                loc = Location();
                 loc.cell = int32_t(c);
                 loc.steps = lane_steps[lane];
                 for (int k = 0; k < 4; ++k) {
@@ -119,12 +118,12 @@ __attribute__((noinline)) void TP_LOCATE_BATCH_NAME(const Cells<Index>& cells, s
                 for (int k = 1; k < 4; ++k) exit = D[k] < D[exit] ? k : exit;
                 const uint32_t next = r.neighbours[exit];
                 if (!(D[exit] < -bound) || next == none_index<Index>()) {
-                    out[i] = walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], c, lane_steps[lane]);
+                    walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], c, lane_steps[lane], out[i]);
                 } else {
                     const uint32_t steps = ++lane_steps[lane];
                     lane_cell[lane] = next;
                     if (next >= inner || steps > step_cap)
-                        out[i] = walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], next, steps);
+                        walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], next, steps, out[i]);
                     else
                         finished = false;
                 }
