@@ -46,12 +46,14 @@ void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_
 #define TP_WALK_CLEAR_KERNEL ScalarOrientations
 #define TP_LANE_KERNEL ScalarLaneOrientations
 #define TP_WALK_AVX2 false
+#define TP_WALK_TARGET
 #include "core/walk_clear.inl"
 #undef TP_WALK_CLEAR_NAME
 #undef TP_LOCATE_BATCH_NAME
 #undef TP_WALK_CLEAR_KERNEL
 #undef TP_LANE_KERNEL
 #undef TP_WALK_AVX2
+#undef TP_WALK_TARGET
 #ifdef TETPROBE_X86_64
 #pragma GCC push_options
 #pragma GCC target("avx2")
@@ -60,12 +62,14 @@ void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_
 #define TP_WALK_CLEAR_KERNEL Avx2Orientations
 #define TP_LANE_KERNEL Avx2LaneOrientations
 #define TP_WALK_AVX2 true
+#define TP_WALK_TARGET __attribute__((target("avx2")))  // clang has no target pragma
 #include "core/walk_clear.inl"
 #undef TP_WALK_CLEAR_NAME
 #undef TP_LOCATE_BATCH_NAME
 #undef TP_WALK_CLEAR_KERNEL
 #undef TP_LANE_KERNEL
 #undef TP_WALK_AVX2
+#undef TP_WALK_TARGET
 #pragma GCC pop_options
 #endif
 

@@ -2,7 +2,7 @@
 // a region compiled for that target, so that its kernels inline): TP_WALK_CLEAR_NAME and
 // TP_LOCATE_BATCH_NAME are the functions' names, TP_WALK_CLEAR_KERNEL the orientation kernel of one
 // cell, TP_LANE_KERNEL that of four queries' cells at once (tetrahedron_orientations.h), and
-// TP_WALK_AVX2 the general walk's instruction set.
+// TP_WALK_AVX2 the general walk's instruction set, TP_WALK_TARGET the functions' target attribute.
 //
 // The common case, kept lean: the walk over tetrahedra while the filter decides. A cell whose four
 // orientations are all certainly positive holds the query (weights D / sum D); a cell with a
@@ -10,7 +10,7 @@
 // is a valid visibility step). Returns true with loc filled when answered; false with *cell where
 // the general walk must take over (an uncertain sign, the hull, an outer cell, or the step cap).
 template <class Index>
-__attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Index>& cells, uint32_t* cell, const float q[3],
+TP_WALK_TARGET __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Index>& cells, uint32_t* cell, const float q[3],
                                                   uint32_t* steps, uint32_t step_cap, Location& loc) {
     const uint32_t inner = cells.s.inner_cell_count;
     uint32_t c = *cell;
@@ -53,7 +53,7 @@ __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Index>& cells, uin
 // over), and the next query of the batch takes the lane. The same steps as walk_clear, with the same
 // operations on the same values: the same cells and weights, bit for bit.
 template <class Index>
-__attribute__((noinline)) void TP_LOCATE_BATCH_NAME(const Cells<Index>& cells, size_t count, const float (*q)[3],
+TP_WALK_TARGET __attribute__((noinline)) void TP_LOCATE_BATCH_NAME(const Cells<Index>& cells, size_t count, const float (*q)[3],
                                                     const int32_t* hints, Location* out) {
     constexpr int kLanes = 8;
     const Store::Impl& s = cells.s;
