@@ -447,15 +447,17 @@ void print_row(const char* name, const SizeResult* r, double SizeResult::*field,
 // target applies to meets it (NaN = a peer that did not run: "skipped").
 void print_ratio(const char* name, const double (&values)[kSizes], const char* format, const char* target,
                  bool at_most, double threshold, const bool (&applies)[kSizes]) {
-    bool met = true, skipped = false;
+    bool met = true, skipped = false, any = false;
     for (int i = 0; i < kSizes; ++i) {
         if (!applies[i]) continue;
+        any = true;
         if (std::isnan(values[i])) skipped = true;
         else if (at_most ? !(values[i] <= threshold) : !(values[i] >= threshold)) met = false;
     }
     std::printf("| %s |", name);
     for (int i = 0; i < kSizes; ++i) std::printf(" %s%s |", fmt(format, values[i]).c_str(), applies[i] ? "" : " (n/a)");
-    std::printf(" %s | %s |\n", target, std::isinf(threshold) ? "-" : skipped ? "skipped" : met ? "met" : "missed");
+    std::printf(" %s | %s |\n", target,
+                std::isinf(threshold) ? "-" : !any ? "n/a at every size" : skipped ? "skipped" : met ? "met" : "missed");
 }
 
 }  // namespace
