@@ -121,11 +121,14 @@ public:
         cells->assign(n, -1);
         probes->assign(4 * n, 0);
         weights->assign(4 * n, 0.0f);
-        BatchSettings batch;
-        batch.threads = threads_;
-        size_t first_outside = 0;
-        if (n) store.weights_batch(n, positions.data(), 12, cells->data(), 4, probes->data(), 16, weights->data(), 16, batch,
-                                   &first_outside);
+        // Batches never start threads: this one is split into disjoint ranges over bake's job runner.
+        constexpr size_t kChunk = 2048;
+        run_jobs((n + kChunk - 1) / kChunk, threads_, [&](size_t job) {
+            const size_t first = job * kChunk, count = std::min(kChunk, n - first);
+            size_t first_outside = 0;
+            store.weights_batch(count, &positions[3 * first], 12, &(*cells)[first], 4, &(*probes)[4 * first], 16,
+                                &(*weights)[4 * first], 16, BatchSettings{}, &first_outside);
+        }, Progress{}, "locate");
     }
 
     // The error estimate at the validation points (see probe_selection.h).

@@ -1,15 +1,22 @@
 // Version, thread-local errors and status names.
 #include "boundary.h"
 
+#include <cstdarg>
+#include <cstdio>
 #include <cstring>
 
 namespace tetprobe {
 
 namespace {
+// The calling thread's message: a built one (t_last_error), or one without allocation (t_message:
+// a static string, or t_formatted), which the queries use.
 thread_local std::string t_last_error;
+thread_local const char* t_message = nullptr;
+thread_local char t_formatted[320];
 }
 
 tp_status fail(tp_status status, const std::string& message) {
+    t_message = nullptr;
     try {
         t_last_error = message;
     } catch (...) {
@@ -18,7 +25,24 @@ tp_status fail(tp_status status, const std::string& message) {
     return status;
 }
 
-void clear_error() { t_last_error.clear(); }
+tp_status fail_static(tp_status status, const char* message) {
+    t_message = message;
+    return status;
+}
+
+tp_status fail_formatted(tp_status status, const char* format, ...) {
+    va_list arguments;
+    va_start(arguments, format);
+    std::vsnprintf(t_formatted, sizeof t_formatted, format, arguments);
+    va_end(arguments);
+    t_message = t_formatted;
+    return status;
+}
+
+void clear_error() {
+    t_message = nullptr;
+    t_last_error.clear();
+}
 
 }  // namespace tetprobe
 
@@ -26,7 +50,7 @@ extern "C" {
 
 TP_API uint32_t tp_version(void) { return TP_VERSION; }
 
-TP_API const char* tp_last_error(void) { return tetprobe::t_last_error.c_str(); }
+TP_API const char* tp_last_error(void) { return tetprobe::t_message ? tetprobe::t_message : tetprobe::t_last_error.c_str(); }
 
 TP_API const char* tp_status_name(tp_status status) {
     // C callers may pass any int; reading it as the enum would be undefined in C++ when out of range.

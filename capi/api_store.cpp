@@ -38,20 +38,21 @@ const char* const kGaveUpMessage =
     "the query gave up after examining its cap of cells: the store's tessellation is inconsistent (a corrupt or "
     "forged blob; a store this library built never gets here)";
 
-// A single query's failure.
+// A single query's failure (no allocation: queries never allocate).
 tp_status report_query(Status status) {
     if (status == Status::ok) return TP_OK;
-    return fail(status, status == Status::outside ? kOutsideMessage : kGaveUpMessage);
+    return fail_static(to_tp_status(status), status == Status::outside ? kOutsideMessage : kGaveUpMessage);
 }
 
 // A batch's: the first failed query, named.
 tp_status report_batch(Status status, size_t first) {
     if (status == Status::ok) return TP_OK;
     if (status == Status::outside)
-        return fail(status, "positions are outside the probes' hull (store built without extrapolation); the first at "
-                            "index " + std::to_string(first) + " (their SH and weights are zero)");
-    return fail(status, std::string(kGaveUpMessage) + "; the first at index " + std::to_string(first) +
-                            " (the SH and weights of failed queries are zero)");
+        return fail_formatted(to_tp_status(status),
+                              "positions are outside the probes' hull (store built without extrapolation); the first "
+                              "at index %zu (their SH and weights are zero)", first);
+    return fail_formatted(to_tp_status(status), "%s; the first at index %zu (the SH and weights of failed queries are zero)",
+                          kGaveUpMessage, first);
 }
 
 tp_batch_options default_batch_options() {
@@ -69,8 +70,7 @@ BatchSettings batch_settings(const tp_batch_options* options) {
         throw Error(Status::invalid_argument, "options->struct_size is not set (use tp_batch_options_init)");
     if (options->flags & ~uint32_t(TP_BATCH_CHAIN_HINTS))
         throw Error(Status::invalid_argument, "unknown batch flags " + std::to_string(options->flags));
-    settings.chain_hints = (options->flags & TP_BATCH_CHAIN_HINTS) != 0;
-    settings.threads = options->threads > 1 ? options->threads : 1;
+    settings.chain_hints = (options->flags & TP_BATCH_CHAIN_HINTS) != 0;  // threads: deprecated, ignored
     return settings;
 }
 

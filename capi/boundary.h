@@ -14,6 +14,10 @@ namespace tetprobe {
 
 // Records the calling thread's message and returns status (so `return fail(...)` reads naturally).
 tp_status fail(tp_status status, const std::string& message);
+// The same without allocating (the query paths): a message that lives for ever (a literal), or one
+// printf-formatted into a fixed per-thread buffer (cut at 319 characters).
+tp_status fail_static(tp_status status, const char* message);
+tp_status fail_formatted(tp_status status, const char* format, ...) __attribute__((format(printf, 2, 3)));
 void clear_error();
 
 // The one translation of the run time's statuses and flags into the C ABI's: the values are equal.

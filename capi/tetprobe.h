@@ -286,18 +286,29 @@ TP_API tp_status tp_store_interpolate(const tp_store* store, const float positio
 typedef struct tp_batch_options {
     uint32_t struct_size;
     uint32_t flags;              /* TP_BATCH_* */
-    /** Threads the batch may use (0 or 1 = the calling thread only). A batch is split into up to this
-        many contiguous ranges of at least 4,096 queries each (a thread costs tens of microseconds to
-        start, so smaller batches run on the calling thread). A job system can split a batch itself:
-        batch calls on disjoint ranges may run on any threads at once. */
+    /** Deprecated and ignored: a batch runs on the calling thread only, and the library
+        never starts a thread (values above 1 used to start threads inside each call, which cost
+        more than they gained on a frame's batch). Kept so that older callers still compile and run. */
     uint32_t threads;
 } tp_batch_options;
+
+/* Splitting a frame over threads: the engine's own workers (a pool started once, or its job system)
+   each call a batch function on a disjoint range of the frame's objects, with that range's own hints:
+
+       worker w of W, every frame:
+           size_t begin = count * w / W, end = count * (w + 1) / W;
+           tp_store_interpolate_batch(store, end - begin, positions + 3 * begin, 0,
+                                      hints + begin, 0, sh + 27 * begin, 0, NULL);
+
+   A store is immutable, so any number of such calls run at once; each range's answers are the same
+   bits as single queries. Ranges of a few hundred queries or more keep the per-call cost negligible
+   (samples/bench: "tetprobe_bench store" times two persistent workers against one). */
 
 /** Without hints (hints == NULL), start each query from the cell the previous query of the same
     range ended in (objects given in a spatially coherent order); by default each starts cold. */
 #define TP_BATCH_CHAIN_HINTS 1u
 
-/** Fills defaults (no flags, 1 thread) and struct_size. */
+/** Fills defaults (no flags, threads 1) and struct_size. */
 TP_API tp_status tp_batch_options_init(tp_batch_options* options);
 
 /** Batch of count queries. positions at position_stride bytes (0 = 12); hints at hint_stride (0 = 4),

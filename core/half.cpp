@@ -95,6 +95,17 @@ __attribute__((target("avx2,f16c,fma"))) __m256 load_sh_chunk(const uint16_t* sh
     return _mm256_cvtph_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(sh + 8 * chunk)));
 }
 
+
+bool cpu_has_f16c_avx2_fma() {
+    __builtin_cpu_init();
+    unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
+    if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
+    const bool f16c = (ecx >> 29) & 1u;
+    return f16c && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+}
+
+}  // namespace
+
 __attribute__((target("avx2,f16c,fma"))) void blend_sh_halves_f16c(const uint16_t* const sh[4],
                                                                     const float weights[4], float out[27]) {
     const __m256 w0 = _mm256_set1_ps(weights[0]);
@@ -116,16 +127,6 @@ __attribute__((target("avx2,f16c,fma"))) void blend_sh_halves_f16c(const uint16_
     _mm_storel_pi(reinterpret_cast<__m64*>(out + 24), tail);
     _mm_store_ss(out + 26, _mm_movehl_ps(tail, tail));
 }
-
-bool cpu_has_f16c_avx2_fma() {
-    __builtin_cpu_init();
-    unsigned eax = 0, ebx = 0, ecx = 0, edx = 0;
-    if (!__get_cpuid(1, &eax, &ebx, &ecx, &edx)) return false;
-    const bool f16c = (ecx >> 29) & 1u;
-    return f16c && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-}
-
-}  // namespace
 
 bool half_simd_available() {
     static const bool available = cpu_has_f16c_avx2_fma();

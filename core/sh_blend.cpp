@@ -63,7 +63,7 @@ void blend_unorm8_portable(const uint8_t* const records[4], const float weights[
 void blend_half_simd(const uint8_t* const records[4], const float weights[4], float out[27]) {
     const uint16_t* sh[4];
     for (int k = 0; k < 4; ++k) sh[k] = reinterpret_cast<const uint16_t*>(records[k]);
-    blend_sh_halves(sh, weights, out);
+    blend_sh_halves_f16c(sh, weights, out);
 }
 
 // Four halves at record + 2 * index, without reading past them.
@@ -192,9 +192,9 @@ ShBlendFunction sh_blend_function_portable(ShEncoding encoding) {
     }
 }
 
-ShBlendFunction sh_blend_function(ShEncoding encoding) {
+ShBlendFunction sh_blend_function(ShEncoding encoding, bool simd) {
 #if defined(__x86_64__)
-    if (half_simd_available()) {
+    if (simd) {
         switch (encoding) {
             case kShHalfL1: return blend_half_l1_simd;
             case kShUnorm8: return blend_unorm8_simd;
@@ -202,8 +202,12 @@ ShBlendFunction sh_blend_function(ShEncoding encoding) {
             default: return blend_half_simd;
         }
     }
+#else
+    (void)simd;
 #endif
     return sh_blend_function_portable(encoding);
 }
+
+ShBlendFunction sh_blend_function(ShEncoding encoding) { return sh_blend_function(encoding, half_simd_available()); }
 
 }  // namespace tetprobe

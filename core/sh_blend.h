@@ -22,5 +22,7 @@ using ShBlendFunction = void (*)(const uint8_t* const records[4], const float we
 // portable one.
 ShBlendFunction sh_blend_function(ShEncoding encoding);
 ShBlendFunction sh_blend_function_portable(ShEncoding encoding);
+// The F16C/AVX2 kernel (simd: the caller has checked half_simd_available()) or the portable one.
+ShBlendFunction sh_blend_function(ShEncoding encoding, bool simd);
 
 }  // namespace tetprobe

@@ -1,4 +1,5 @@
-// Store: loading (copy into aligned memory, validate once) and the accessors.
+// Store: loading (copy into aligned memory, validate once, choose the query kernels) and the
+// accessors. The queries are in store_queries.cpp.
 #include "core/store.h"
 
 #include "core/error.h"
@@ -12,7 +13,6 @@
 #include "core/store_layout.h"
 #include "core/store_rebuild.h"
 #include "core/store_validation.h"
-#include "core/tetrahedron_orientations.h"
 
 #include <algorithm>
 #include <cmath>
@@ -125,7 +125,6 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     s.probe_count = h.probe_count;
     s.cell_count = h.cell_count;
     s.inner_cell_count = h.inner_cell_count;
-    s.avx2 = cpu_has_avx2() && !getenv("TP_NO_AVX2");
     for (int k = 0; k < 3; ++k) s.origin[k] = h.origin[k];
     auto section = [&](Section id) { return base + table[id].offset; };
     if (h.position_encoding == kPositionsUnorm16)
@@ -135,7 +134,6 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     s.sh_encoding = ShEncoding(h.sh_encoding);
     s.sh = section(kSectionSh);
     s.sh_stride = sh_record_bytes(s.sh_encoding, h.layout == kLayoutFast);
-    s.blend_sh = sh_blend_function(s.sh_encoding);
     s.map16 = store_map_bytes(h.input_probe_count) == 2;
     s.probe_source = section(kSectionProbeSource);
     s.input_remap = section(kSectionInputRemap);
@@ -165,6 +163,10 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     validate_cell_records(s);
     decode_normals(s, section(kSectionNormals));
     if (s.leak_offsets) mark_blocked_cells(s);
+    // The query kernels for this store and CPU, once (store_queries.cpp calls only these).
+    const InstructionSet instruction_set = detect_instruction_set();
+    s.locate = choose_locate_kernel(s, instruction_set);
+    s.blend_sh = sh_blend_function(s.sh_encoding, instruction_set == InstructionSet::avx2);
     return store;
 }
 
@@ -222,20 +224,6 @@ void Store::cell(uint32_t cell, uint32_t vertices[4], uint32_t neighbours[4]) co
         widen_cell<uint32_t>(*impl_, cell, vertices, neighbours);
     else
         widen_cell<uint16_t>(*impl_, cell, vertices, neighbours);
-}
-
-Location Store::locate(const float world_position[3], int32_t hint) const {
-    float q[3];
-    local_position(*impl_, world_position, q);
-    Location loc = locate_local(*impl_, q, hint);
-    if (impl_->leak_offsets && loc.status == Status::ok) weigh_by_visibility(*impl_, loc);
-    return loc;
-}
-
-Location Store::locate_exhaustive(const float world_position[3], Cells cells) const {
-    float q[3];
-    local_position(*impl_, world_position, q);
-    return tetprobe::locate_exhaustive(*impl_, q, cells == Cells::outer);
 }
 
 }  // namespace tetprobe

@@ -16,8 +16,8 @@ enum class CellKind : uint32_t { inner = 0, outer = 1 };
 
 // Everything one query used (the C ABI's tp_location, in stored-probe terms).
 struct Location {
-    // ok; outside (a store built without extrapolation); invalid_blob: the query gave up at its cap
-    // of examined cells (locate.cpp), which only a corrupt or forged store's tessellation reaches.
+    // ok; outside (a store built without extrapolation); invalid_blob: the query gave up at its cap of
+    // examined cells (walk.cpp, exhaustive_search.cpp), which only a corrupt or forged store's cells reach.
     Status status = Status::ok;
     int32_t cell = -1;
     CellKind kind = CellKind::inner;
@@ -29,10 +29,9 @@ struct Location {
     float t = 0;
 };
 
-// How a batch runs (see tp_batch_options).
+// How a batch runs (see tp_batch_options). A batch runs on the calling thread.
 struct BatchSettings {
     bool chain_hints = false;  // without hints, each query starts where the previous one ended
-    uint32_t threads = 1;
 };
 
 class Store {

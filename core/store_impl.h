@@ -1,7 +1,8 @@
 // The inside of a loaded Store: the aligned copy of the blob and typed views of its sections,
-// shared by loading (store.cpp), the walk (locate.cpp) and the blend (interpolate.cpp).
+// shared by loading (store.cpp), the walk (walk.cpp) and the queries (store_queries.cpp).
 #pragma once
 
+#include "core/locate_kernel.h"
 #include "core/sh_blend.h"
 #include "core/store.h"
 
@@ -37,7 +38,7 @@ struct Store::Impl {
     uint32_t probe_count = 0;
     uint32_t cell_count = 0;
     uint32_t inner_cell_count = 0;
-    bool avx2 = false;                   // the walk's AVX2 kernel runs on this CPU
+    LocateKernel locate{};               // the walk compiled for this store and CPU, chosen at load
     double origin[3] = {0, 0, 0};
 
     const float* positions = nullptr;        // 3 per probe (the blob's, or decoded)
@@ -45,7 +46,7 @@ struct Store::Impl {
     ShEncoding sh_encoding = kShHalf;
     const uint8_t* sh = nullptr;             // one record of sh_stride bytes per probe
     size_t sh_stride = 0;
-    ShBlendFunction blend_sh = nullptr;      // the encoding's dispatched blend
+    ShBlendFunction blend_sh = nullptr;      // the encoding's blend for this CPU, chosen at load
     bool map16 = false;                      // probe maps are uint16 (else uint32)
     const void* probe_source = nullptr;      // per probe
     const void* input_remap = nullptr;       // per input probe (the blob's, or probe_source inverted)

@@ -81,7 +81,7 @@ namespace TetProbe
         public ulong max_file_bytes;
     }
 
-    /// <summary>tp_batch_options: flags (TP_BATCH_*) and the threads a batch query may use (0 or 1 = the caller's).</summary>
+    /// <summary>tp_batch_options: flags (TP_BATCH_*); threads is deprecated and ignored (batches run on the caller's thread).</summary>
     [StructLayout(LayoutKind.Sequential)]
     internal struct TpBatchOptions
     {

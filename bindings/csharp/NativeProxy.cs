@@ -216,7 +216,7 @@ namespace TetProbe
             Check(NativeMethods.tp_store_interpolate(store, ref position, ref hint, out sh));
         }
 
-        /// <summary>tp_batch_options for threads (0 or 1 = the calling thread) and TP_BATCH_CHAIN_HINTS.</summary>
+        /// <summary>tp_batch_options for TP_BATCH_CHAIN_HINTS; threads is passed on but ignored by the library (deprecated).</summary>
         public static TpBatchOptions BatchOptions(int threads, bool chainHints)
         {
             if (threads < 0) throw new ArgumentOutOfRangeException("threads", threads, "threads must be >= 0");

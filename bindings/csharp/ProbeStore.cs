@@ -237,7 +237,8 @@ namespace TetProbe
             NativeProxy.InterpolateBatch(Live(), positions, hints, results);
         }
 
-        /// <summary>Batch form on up to `threads` threads (0 or 1 = the calling thread; results do not depend on it).
+        /// <summary>Batch form; threads is deprecated and ignored: the batch runs on the calling thread (split a
+        /// frame by calling the batch on disjoint ranges from your own threads, each range with its own hints).
         /// chainHints (only with hints == null): each query starts from the cell the previous one ended in, for
         /// objects given in a spatially coherent order.</summary>
         public void Interpolate(Vector3[] positions, int[] hints, SphericalHarmonicsL2[] results, int threads,

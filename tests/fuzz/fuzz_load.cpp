@@ -6,9 +6,9 @@
 // maps); bits 1 and 7 flip the header's layout by 1 and 2 (fast, compact, rebuilt), bits 4 and 5 its SH
 // encoding, bit 6 its position encoding, so that one seed reaches every other kind's loader; bits 2
 // and 3 flip the occlusion and leak-control flags the same way. Every query must end within its cap
-// of examined cells (core/locate.cpp): a walk of cells + 64 steps past its start, a search of
-// 3 x outer cells + 4096; one that gives up says so (invalid_blob). The seeds include forged blobs with
-// valid checksums (tests/fuzz/seeds/fuzz_load/forged_*, written by tetprobe_tests "[.write-forged-seeds]").
+// of examined cells (core/walk.cpp, core/exhaustive_search.cpp): a walk of cells + 64 steps past its
+// start, a search of 3 x outer cells + 4096; one that gives up says so (invalid_blob). The seeds
+// include forged blobs with valid checksums (tests/fuzz/seeds/fuzz_load/forged_*, written by tetprobe_tests "[.write-forged-seeds]").
 #include "core/error.h"
 #include "core/store.h"
 #include "core/store_format.h"

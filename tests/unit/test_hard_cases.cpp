@@ -667,7 +667,7 @@ TEST_CASE("hard cases: rotated lattices, several sizes and rotations", "[hard]")
     slivers.ray = 0.02;
     // A few sliver facets along the rounded edges between two sides (nearly collinear probes whose
     // normals belong to different sides) turn over right outside the hull: a known limit (README);
-    // their neighbours answer where they overlap (core/locate.cpp, choose_outer). Measured: 3 of
+    // their neighbours answer where they overlap (core/outer_cells.cpp, choose_outer). Measured: 3 of
     // the 12^3 lattice's 132 outer cells.
     slivers.allowed_fold_fraction = 0.03;
     // Out there, the sweeps of a side's shared normal and of its edge probes' averaged normals cross:

@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <memory>
 #include <random>
@@ -410,4 +411,33 @@ TEST_CASE("leak: pairs farther apart than kLeakLongestPair are not flagged, near
         INFO("pair " << d << " apart");
         CHECK(blocked(data, a, b) == (d <= kLeakLongestPair));
     }
+}
+
+TEST_CASE("leak: batches weigh by visibility as single queries do, bit for bit", "[leak][batch]") {
+    const WallStores s = wall_stores();
+    std::mt19937 random(23);
+    std::uniform_real_distribution<float> u(-2.2f, 2.2f);
+    const size_t n = 3000;
+    std::vector<float> points(3 * n);
+    for (float& x : points) x = u(random);
+    std::vector<int32_t> hints(n, -1);
+    std::vector<float> sh(27 * n), weights(4 * n);
+    std::vector<uint32_t> probes(4 * n);
+    REQUIRE(s.leak->interpolate_batch(n, points.data(), 12, hints.data(), 4, sh.data(), 108, BatchSettings{}, nullptr) ==
+            Status::ok);
+    REQUIRE(s.leak->weights_batch(n, points.data(), 12, nullptr, 0, probes.data(), 16, weights.data(), 16,
+                                  BatchSettings{}, nullptr) == Status::ok);
+    size_t weighed = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const Location loc = s.leak->locate(&points[3 * i], -1);
+        float single[27];
+        int32_t hint = -1;
+        REQUIRE(s.leak->interpolate(&points[3 * i], &hint, single) == Status::ok);
+        REQUIRE(hint == hints[i]);
+        REQUIRE(std::memcmp(single, &sh[27 * i], sizeof single) == 0);
+        REQUIRE(std::memcmp(loc.weights, &weights[4 * i], sizeof loc.weights) == 0);
+        const Location plain = s.plain->locate(&points[3 * i], -1);
+        weighed += std::memcmp(plain.weights, loc.weights, sizeof loc.weights) != 0;
+    }
+    CHECK(weighed > 100);  // the wall changes many answers: the batch did weigh them
 }

@@ -238,9 +238,10 @@ class Store(NativeHandle):
         points: float32 world units (other number dtypes are converted), any row stride. sh rows are
         channel-major [r0..r8, g0..g8, b0..b8] radiance SH (evaluate with tetprobe.sh). hints[M] int32
         are the cells the same objects were found in last time (-1 = none; None = all -1): keep one per
-        moving object and pass the returned array back next frame. threads: how many threads the
-        library may split the batch over (0 or 1 = the calling thread; only batches of more than 4,096
-        points are split). chain_hints=True (only with hints=None) starts each query from the previous
+        moving object and pass the returned array back next frame. threads: deprecated and ignored
+        (accepted for older callers): the library never starts threads; to use several, call this on
+        disjoint slices of the points from your own threads, each slice with its own hints.
+        chain_hints=True (only with hints=None) starts each query from the previous
         query's cell, for points given in a spatially coherent order; the returned hints are then None.
         A single point of shape [3] (with hints None or one int) is one tp_store_interpolate call and
         gives (sh[27], hint int). Points outside a store built with extrapolate=False raise

@@ -1,0 +1,165 @@
+// The query front end: every query of a store — interpolate (with or without occlusion), locate,
+// weights and their batches — goes through one pipeline, answer(): to the store's frame, locate with
+// the kernel the store chose at load, weigh for leaks; then the caller's outputs. Nothing here
+// allocates, throws or starts a thread: a batch runs on the calling thread (an engine splits a frame
+// into ranges for its own workers, see tp_batch_options).
+#include "core/leak_control.h"
+#include "core/locate.h"
+#include "core/store.h"
+#include "core/store_impl.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace tetprobe {
+
+namespace {
+
+// The one pipeline: count queries (<= kMaxBatchGroup) at local positions from their hints, located
+// and weighed as the store answers them (leak control applied to every located query). out holds
+// default Locations on entry; the answers are written into them in place.
+void answer(const Store::Impl& s, size_t count, const float (*local)[3], const int32_t* hints, Location* out) {
+    if (count == 1)
+        s.locate.locate(s, local[0], hints[0], out[0]);
+    else
+        s.locate.locate_batch(s, count, local, hints, out);
+    if (s.leak_offsets)
+        for (size_t i = 0; i < count; ++i)
+            if (out[i].status == Status::ok) weigh_by_visibility(s, out[i]);
+}
+
+// One query at a world position, answered in loc (a default Location).
+void answer_one(const Store::Impl& s, const float world[3], int32_t hint, Location& loc) {
+    float local[1][3];
+    local_position(s, world, local[0]);
+    answer(s, 1, local, &hint, &loc);
+}
+
+// The four probes' SH records, decoded as they are weighed (the encoding's kernel, sh_blend.h).
+void blend(const Store::Impl& s, const Location& loc, float out_sh[27]) {
+    const uint8_t* records[4];
+    for (int k = 0; k < 4; ++k) records[k] = s.sh + size_t(loc.probes[k]) * s.sh_stride;
+    s.blend_sh(records, loc.weights, out_sh);
+}
+
+// Mixed lights' visibility at the location: the weighted occlusion bytes, in [0, 1]; 1 for channels
+// the store has no light for (or a store without occlusion).
+void blend_occlusion(const Store::Impl& s, const Location& loc, float out[4]) {
+    for (uint32_t i = 0; i < kOcclusionChannels; ++i) out[i] = 1.0f;
+    if (!s.occlusion) return;
+    for (uint32_t i = 0; i < s.occlusion_lights; ++i) {
+        float sum = 0;
+        for (int k = 0; k < 4; ++k) sum += loc.weights[k] * float(s.occlusion[size_t(loc.probes[k]) * kOcclusionChannels + i]);
+        const float value = sum / 255.0f;
+        out[i] = value < 0 ? 0 : (value > 1 ? 1 : value);
+    }
+}
+
+// SH and occlusion of a location (zero when it failed). Returns its status.
+Status answer_sh(const Store::Impl& s, const Location& loc, float out_sh[27], float* out_occlusion) {
+    if (loc.status != Status::ok) {
+        std::fill(out_sh, out_sh + 27, 0.0f);
+        if (out_occlusion) std::fill(out_occlusion, out_occlusion + kOcclusionChannels, 0.0f);
+        return loc.status;
+    }
+    blend(s, loc, out_sh);
+    if (out_occlusion) blend_occlusion(s, loc, out_occlusion);
+    return Status::ok;
+}
+
+// Element i of a caller's strided buffer, as bytes: strides need no alignment, so every element is
+// read and written with memcpy, never through a typed pointer.
+const uint8_t* strided(const void* base, size_t i, size_t stride) { return static_cast<const uint8_t*>(base) + i * stride; }
+uint8_t* strided(void* base, size_t i, size_t stride) { return static_cast<uint8_t*>(base) + i * stride; }
+
+// Runs a batch in groups of kMaxBatchGroup through answer() (reading and writing the hints), then
+// hands every location to output(i, loc). Returns ok, or the status of the first query that failed
+// with *first_outside its index.
+template <class Output>
+Status run_batch(const Store::Impl& s, size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                 size_t hint_stride, bool chain_hints, size_t* first_outside, Output output) {
+    size_t first = count;
+    Status failure = Status::ok;
+    int32_t chained = -1;
+    float local[kMaxBatchGroup][3];
+    int32_t start[kMaxBatchGroup];
+    Location located[kMaxBatchGroup];
+    for (size_t group = 0; group < count; group += kMaxBatchGroup) {
+        const size_t n = std::min(kMaxBatchGroup, count - group);
+        for (size_t j = 0; j < n; ++j) {
+            located[j] = Location();
+            float world[3];
+            std::memcpy(world, strided(positions, group + j, position_stride), sizeof world);
+            local_position(s, world, local[j]);
+            start[j] = -1;
+            if (hints) std::memcpy(&start[j], strided(hints, group + j, hint_stride), sizeof start[j]);
+        }
+        if (hints || !chain_hints) {
+            answer(s, n, local, start, located);
+        } else {  // each query starts where the previous one ended: one after the other
+            for (size_t j = 0; j < n; ++j) {
+                start[j] = chained;
+                answer(s, 1, local + j, start + j, located + j);
+                chained = located[j].cell;
+            }
+        }
+        for (size_t j = 0; j < n; ++j) {
+            const size_t i = group + j;
+            if (hints) std::memcpy(strided(hints, i, hint_stride), &located[j].cell, sizeof located[j].cell);
+            if (located[j].status != Status::ok && first == count) first = i, failure = located[j].status;
+            output(i, located[j]);
+        }
+    }
+    if (first_outside) *first_outside = first;
+    return failure;
+}
+
+}  // namespace
+
+Location Store::locate(const float world_position[3], int32_t hint) const {
+    Location loc;
+    answer_one(*impl_, world_position, hint, loc);
+    return loc;
+}
+
+Location Store::locate_exhaustive(const float world_position[3], Cells cells) const {
+    float q[3];
+    local_position(*impl_, world_position, q);
+    return tetprobe::locate_exhaustive(*impl_, q, cells == Cells::outer);
+}
+
+Status Store::interpolate(const float world_position[3], int32_t* hint, float out_sh[27], float out_occlusion[4]) const {
+    Location loc;
+    answer_one(*impl_, world_position, hint ? *hint : -1, loc);
+    if (hint) *hint = loc.cell;
+    return answer_sh(*impl_, loc, out_sh, out_occlusion);
+}
+
+Status Store::interpolate_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                                size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,
+                                size_t* first_outside, float* out_occlusion, size_t occlusion_stride) const {
+    const Impl& s = *impl_;
+    return run_batch(s, count, positions, position_stride, hints, hint_stride, settings.chain_hints, first_outside,
+                     [&](size_t i, const Location& loc) {
+                         float sh[27], occlusion[kOcclusionChannels];
+                         answer_sh(s, loc, sh, out_occlusion ? occlusion : nullptr);
+                         std::memcpy(strided(out_sh, i, sh_stride), sh, sizeof sh);
+                         if (out_occlusion) std::memcpy(strided(out_occlusion, i, occlusion_stride), occlusion, sizeof occlusion);
+                     });
+}
+
+Status Store::weights_batch(size_t count, const float* positions, size_t position_stride, int32_t* hints,
+                            size_t hint_stride, uint32_t* out_probes, size_t probes_stride, float* out_weights,
+                            size_t weights_stride, const BatchSettings& settings, size_t* first_outside) const {
+    return run_batch(*impl_, count, positions, position_stride, hints, hint_stride, settings.chain_hints, first_outside,
+                     [&](size_t i, const Location& loc) {
+                         uint32_t probes[4] = {0, 0, 0, 0};
+                         float weights[4] = {0, 0, 0, 0};
+                         if (loc.status == Status::ok)
+                             for (int k = 0; k < 4; ++k) probes[k] = loc.probes[k], weights[k] = loc.weights[k];
+                         std::memcpy(strided(out_probes, i, probes_stride), probes, sizeof probes);
+                         std::memcpy(strided(out_weights, i, weights_stride), weights, sizeof weights);
+                     });
+}
+
+}  // namespace tetprobe
