@@ -17,8 +17,8 @@ namespace tetprobe {
 namespace {
 
 // The one pipeline: count queries (<= kMaxBatchGroup) at local positions from their hints, located
-// and weighed as the store answers them (leak control applied to every located query). out holds
-// default Locations on entry; the answers are written into them in place.
+// and weighed as the store answers them (leak control applied to every located query). The answers
+// are written into out in place, every field of them (a batch does not reset its Locations first).
 void answer(const Store::Impl& s, size_t count, const float (*local)[3], const int32_t* hints, Location* out) {
     if (count == 1)
         s.locate.locate(s, local[0], hints[0], out[0]);
@@ -88,7 +88,6 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     for (size_t group = 0; group < count; group += kMaxBatchGroup) {
         const size_t n = std::min(kMaxBatchGroup, count - group);
         for (size_t j = 0; j < n; ++j) {
-            located[j] = Location();
             float world[3];
             std::memcpy(world, strided(positions, group + j, position_stride), sizeof world);
             local_position(s, world, local[j]);
