@@ -24,7 +24,7 @@ constexpr size_t kMaxBatchGroup = 64;
 // query, bit for bit, and the same as the exhaustive search inside the hull.
 struct LocateKernel {
     // One query at a local position, from hint (-1 or out of range: the start grid's cell), answered
-    // in out (a default Location on entry: answers are written in place, never copied whole).
+    // in out (every field written, whatever it held: answers are written in place, never copied whole).
     void (*locate)(const Store::Impl& store, const float local[3], int32_t hint, Location& out);
     // count <= kMaxBatchGroup queries walked together (several cells' orientations computed at once),
     // out as above.

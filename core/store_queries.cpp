@@ -9,6 +9,7 @@
 #include "core/store_impl.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 namespace tetprobe {
@@ -16,8 +17,8 @@ namespace tetprobe {
 namespace {
 
 // The one pipeline: count queries (<= kMaxBatchGroup) at local positions from their hints, located
-// and weighed as the store answers them (leak control applied to every located query). out holds
-// default Locations on entry; the answers are written into them in place.
+// and weighed as the store answers them (leak control applied to every located query). The answers
+// are written into out in place, every field of them (a batch does not reset its Locations first).
 void answer(const Store::Impl& s, size_t count, const float (*local)[3], const int32_t* hints, Location* out) {
     if (count == 1)
         s.locate.locate(s, local[0], hints[0], out[0]);
@@ -87,7 +88,6 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     for (size_t group = 0; group < count; group += kMaxBatchGroup) {
         const size_t n = std::min(kMaxBatchGroup, count - group);
         for (size_t j = 0; j < n; ++j) {
-            located[j] = Location();
             float world[3];
             std::memcpy(world, strided(positions, group + j, position_stride), sizeof world);
             local_position(s, world, local[j]);
@@ -139,11 +139,15 @@ Status Store::interpolate_batch(size_t count, const float* positions, size_t pos
                                 size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,
                                 size_t* first_outside, float* out_occlusion, size_t occlusion_stride) const {
     const Impl& s = *impl_;
+    // An aligned float buffer (the usual case) takes the blend directly: blending into a local array and
+    // copying it out costs a store-forwarding stall on every query (about 5 ns at 1.5k probes).
+    const bool direct = reinterpret_cast<uintptr_t>(out_sh) % alignof(float) == 0 && sh_stride % alignof(float) == 0;
     return run_batch(s, count, positions, position_stride, hints, hint_stride, settings.chain_hints, first_outside,
                      [&](size_t i, const Location& loc) {
                          float sh[27], occlusion[kOcclusionChannels];
-                         answer_sh(s, loc, sh, out_occlusion ? occlusion : nullptr);
-                         std::memcpy(strided(out_sh, i, sh_stride), sh, sizeof sh);
+                         uint8_t* target = strided(out_sh, i, sh_stride);
+                         answer_sh(s, loc, direct ? reinterpret_cast<float*>(target) : sh, out_occlusion ? occlusion : nullptr);
+                         if (!direct) std::memcpy(target, sh, sizeof sh);
                          if (out_occlusion) std::memcpy(strided(out_occlusion, i, occlusion_stride), occlusion, sizeof occlusion);
                      });
 }

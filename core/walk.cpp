@@ -36,8 +36,9 @@ constexpr uint32_t kRecentOuterCells = 8;
 inline uint32_t walk_step_cap(const Store::Impl& s) { return s.cell_count + 64; }
 
 // The general walk from cell, steps already taken: every cell kind, every dimension, the fallback.
-// loc is a fresh Location (answers are written in place: a copied Location costs store-forwarding
-// stalls on the common path).
+// loc may hold an earlier answer: it is reset here, on the rare path, so that a batch need not reset
+// its Locations (answers are written in place: a copied Location costs store-forwarding stalls on the
+// common path).
 template <class Index, uint32_t D, bool Avx2>
 void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_t steps, Location& loc);
 
@@ -75,6 +76,7 @@ void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_
 
 template <class Index, uint32_t D, bool Avx2>
 void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_t steps, Location& loc) {
+    loc = Location();
     const Cells<Index> cells(s);
     const uint32_t step_cap = walk_step_cap(s);
     uint32_t previous = kNoCell;

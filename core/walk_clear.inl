@@ -27,8 +27,13 @@ TP_WALK_TARGET __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Ind
         const double* D = o.D;
         if ((D[0] > o.bound) & (D[1] > o.bound) & (D[2] > o.bound) & (D[3] > o.bound)) {
             const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
+            loc.status = Status::ok;
             loc.cell = int32_t(c);
+            loc.kind = CellKind::inner;
             loc.steps = *steps;
+            loc.fallback = false;
+            loc.searched = 0;
+            loc.t = 0;
             for (int k = 0; k < 4; ++k) {
                 loc.probes[k] = r.vertices[k];
                 loc.weights[k] = float(D[k] * scale);
@@ -107,8 +112,13 @@ TP_WALK_TARGET __attribute__((noinline)) void TP_LOCATE_BATCH_NAME(const Cells<I
             if ((D[0] > bound) & (D[1] > bound) & (D[2] > bound) & (D[3] > bound)) {
                 const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
                 Location& loc = out[i];
+                loc.status = Status::ok;
                 loc.cell = int32_t(c);
+                loc.kind = CellKind::inner;
                 loc.steps = lane_steps[lane];
+                loc.fallback = false;
+                loc.searched = 0;
+                loc.t = 0;
                 for (int k = 0; k < 4; ++k) {
                     loc.probes[k] = r.vertices[k];
                     loc.weights[k] = float(D[k] * scale);

@@ -481,11 +481,43 @@ void print_ratio(const char* name, const double (&values)[kSizes], const char* f
                 std::isinf(threshold) ? "-" : !any ? "n/a at every size" : skipped ? "skipped" : met ? "met" : "missed");
 }
 
+// `store --queries`: only the floor, coherent single and batch on the calling thread, at every size, for
+// quick A/B runs of the query pipeline (a few seconds; the full run takes minutes). Single and batch
+// alternate three times so that a change in the machine's load shows as spread, not as a ratio.
+int run_query_bench(const std::string& command) {
+    std::printf("## Store benchmark, queries only\n\ncommand: `%s`; each time is the median of %d runs\n\n",
+                command.c_str(), kRepetitions);
+    const std::string load_before = load_average();
+    std::printf("| probes | floor | single | batch | single | batch | single | batch | batch / single |\n");
+    std::printf("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    float sink = 0;
+    for (size_t n : kProbeCounts) {
+        const std::vector<float> positions = random_probes(n, 7), sh = random_sh(n, 8);
+        const ObjectPaths paths = moving_objects(kObjects, kFrames, 0.05f * kBox, 0.95f * kBox, 11);
+        const StorePtr fast = build_store(positions, sh, 0);
+        BlobSh blob;
+        if (!fast || !read_blob_sh(fast.get(), &blob)) return 1;
+        std::printf("| %zu | %.1f |", n, time_blend_floor(fast.get(), blob, paths, &sink));
+        double single = 0, batch = 0;
+        for (int round = 0; round < 3; ++round) {
+            single = time_coherent_single(fast.get(), paths, &sink);
+            batch = time_batch(fast.get(), paths, &sink);
+            std::printf(" %.1f | %.1f |", single, batch);
+        }
+        std::printf(" %.2fx |\n", batch / single);
+    }
+    std::printf("\nmachine load (1-minute load average) before / after: %s / %s (sink %g)\n", load_before.c_str(),
+                load_average().c_str(), double(sink));
+    return 0;
+}
+
 }  // namespace
 
 int run_store_bench(int argc, char** argv) {
     std::string command;
     for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
+    for (int i = 1; i < argc; ++i)
+        if (!std::strcmp(argv[i], "--queries")) return run_query_bench(command);
     std::printf("## Store benchmark\n\n");
     std::printf("machine: %s, %u hardware threads; half SIMD path (F16C/AVX2/FMA): %s; compiler: %s; "
                 "tetprobe %u.%u.%u through the C ABI\n",
