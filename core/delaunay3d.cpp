@@ -127,6 +127,9 @@ private:
     size_t mask_ = 0, count_ = 0;
 };
 
+// The insertion's loops over a cell's four slots or a facet's three edges, unrolled: their indices
+// become constants (-O2 does not peel them; about 2% of a rebuild, measured).
+#define TP_UNROLL_FULLY _Pragma("GCC unroll 4")
 #define TP_TETRAHEDRALIZATION PortableTetrahedralization
 #define TP_SPHERE_KERNEL ScalarInsphere
 #define TP_ORIENT_KERNEL ScalarOrientations

@@ -41,10 +41,14 @@ private:
             tets_[t].mark = 0;
             return t;
         }
-        if (tets_.size() >= max_cells_)
-            throw Error(Status::invalid_argument, "more than " + std::to_string(max_cells_) + " cells at once");
+        if (tets_.size() >= max_cells_) over_budget();
         tets_.push_back(Tet{});
         return uint32_t(tets_.size() - 1);
+    }
+
+    // Out of line, so that new_cell stays small enough to inline into the insertion.
+    [[noreturn]] __attribute__((noinline, cold)) void over_budget() const {
+        throw Error(Status::invalid_argument, "more than " + std::to_string(max_cells_) + " cells at once");
     }
 
     void link(uint32_t t, uint32_t k, uint32_t u, uint32_t j) {
@@ -231,6 +235,7 @@ private:
         cavity_.push_back(seed);
         for (size_t i = 0; i < cavity_.size(); ++i) {
             const uint32_t c = cavity_[i];
+            TP_UNROLL_FULLY
             for (uint32_t k = 0; k < 4; ++k) {
                 const uint32_t across = tets_[c].n[k];
                 if (!in_conflict(across >> 2, p)) boundary_.push_back(Boundary{c, k, across});
@@ -258,12 +263,14 @@ private:
             tets_[b.outside >> 2].n[b.outside & 3] = t * 4 + b.facet;
             if (direct) {
                 uint32_t number[4];
+                TP_UNROLL_FULLY
                 for (uint32_t k = 0; k < 4; ++k) {
                     const uint32_t v = cell.v[k], at = v == kInfinite ? count_ : v;
                     Local& local = local_[at];
                     if (local.stamp != stamp_) local = Local{stamp_, numbered++};
                     number[k] = local.number;  // p's own number is never read
                 }
+                TP_UNROLL_FULLY
                 for (const FacetEdge& e : kFacetEdges[b.facet]) {
                     const uint32_t from = number[e.end0], to = number[e.end1], facet = t * 4 + e.facet;
                     pairs_[from * kStride + to] = facet;
@@ -299,6 +306,7 @@ private:
             if (index[t] == kNone32) continue;
             CellSlots& v = mesh.vertices[index[t]];
             CellSlots& n = mesh.neighbours[index[t]];
+            TP_UNROLL_FULLY
             for (uint32_t k = 0; k < 4; ++k) {
                 v[k] = tets_[t].v[k];
                 n[k] = index[tets_[t].n[k] >> 2];
