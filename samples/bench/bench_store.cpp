@@ -26,11 +26,13 @@
 #include <tetgen.h>
 
 #include <atomic>
+#include <condition_variable>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -175,64 +177,99 @@ double time_batch(const tp_store* store, const ObjectPaths& paths, float* sink) 
                         paths.timed_queries());
 }
 
-// Two threads meeting once per frame, as jobs of a game's frame would. Spins briefly, then yields
-// (the machine's cores may be shared).
-class SpinBarrier {
+// Two threads meeting once per frame, as the jobs of a game's frame do: a waiter spins briefly (the
+// other worker usually arrives within microseconds), then sleeps on a condition variable, as job
+// systems' semaphores do. Sleeping matters on a shared machine: when another process takes a core and
+// deschedules one worker, a spinning or yielding waiter keeps its own core busy, while a sleeping one
+// frees it, so the scheduler can run the descheduled worker there at once.
+class FrameBarrier {
 public:
-    explicit SpinBarrier(unsigned parties) : parties_(parties) {}
+    explicit FrameBarrier(unsigned parties) : parties_(parties) {}
     void wait() {
         const unsigned generation = generation_.load(std::memory_order_acquire);
         if (arrived_.fetch_add(1, std::memory_order_acq_rel) + 1 == parties_) {
             arrived_.store(0, std::memory_order_relaxed);
+            std::lock_guard<std::mutex> lock(mutex_);  // a waiter checks the generation under the lock
             generation_.fetch_add(1, std::memory_order_release);
+            wake_.notify_all();
             return;
         }
-        for (unsigned spins = 0; generation_.load(std::memory_order_acquire) == generation; ++spins) {
-            if (spins < 2000) {
+        for (unsigned spins = 0; spins < kSpins; ++spins) {
+            if (generation_.load(std::memory_order_acquire) != generation) return;
 #if defined(__x86_64__) || defined(__i386__)
-                _mm_pause();
+            _mm_pause();
 #endif
-            } else {
-                std::this_thread::yield();
-            }
         }
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return generation_.load(std::memory_order_acquire) != generation; });
     }
 
 private:
+    static constexpr unsigned kSpins = 2000;  // a few microseconds: a frame's two halves end close together
     const unsigned parties_;
     std::atomic<unsigned> arrived_{0};
     std::atomic<unsigned> generation_{0};
+    std::mutex mutex_;
+    std::condition_variable wake_;
 };
 
-// The frame split over persistent workers, as an engine's job system runs it: `workers` threads started
-// once (not timed), fed one frame at a time; each takes a contiguous range of the objects with their
-// own hints and calls tp_store_interpolate_batch on it; the frame ends when every worker is done
-// (a barrier), and the next frame starts at the next barrier. One worker is the same machinery with a
-// single range, so that the ratio of the two is what the second worker gains.
+// Frames 1 .. frames - 1 on `workers` persistent threads, started once (not timed), as an engine's job
+// system runs them: each calls job(w, f) and waits at the barrier for the others before the next frame.
+// Returns the wall seconds.
+template <class Job>
+double run_frames(unsigned workers, size_t frames, const Job& job) {
+    FrameBarrier frame_done(workers);
+    std::atomic<bool> go{false};
+    const auto worker = [&](unsigned w) {
+        while (!go.load(std::memory_order_acquire)) std::this_thread::yield();
+        for (size_t f = 1; f < frames; ++f) {
+            job(w, f);
+            frame_done.wait();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned w = 0; w < workers; ++w) pool.emplace_back(worker, w);
+    const Clock::time_point t0 = Clock::now();
+    go.store(true, std::memory_order_release);
+    for (std::thread& t : pool) t.join();
+    return seconds_since(t0);
+}
+
+// What two frame-synchronised workers can gain on this machine right now: the same frames and barrier
+// as the query workers, with fixed arithmetic in place of the queries (about 40 us a frame, as a
+// 1,024-object frame). Below the independent ceiling when another process deschedules a worker: the
+// frame then waits for it.
+double two_worker_frame_ceiling(size_t frames) {
+    constexpr long kWork = 40000;  // dependent multiply-adds per frame
+    volatile double out[2] = {0, 0};
+    const auto time_with = [&](unsigned workers) {
+        return median_seconds([&] {
+            return run_frames(workers, frames, [&](unsigned w, size_t) {
+                double a = 1.0;
+                for (long i = 0; i < kWork / long(workers); ++i) a = a * 1.0000001 + 1e-9;
+                out[w] = a;
+            });
+        });
+    };
+    const double one = time_with(1);
+    return one / time_with(2);
+}
+
+// The frame split over persistent workers: each takes a contiguous range of the objects with their own
+// hints and calls tp_store_interpolate_batch on it. One worker is the same machinery with a single
+// range, so that the ratio of the two is what the second worker gains.
 double time_batch_workers(const tp_store* store, const ObjectPaths& paths, unsigned workers, float* sink) {
     const std::vector<int32_t> start = first_hints(store, paths);
     return ns_per_query(median_seconds([&] {
                             std::vector<int32_t> hints = start;
                             std::vector<float> out(27 * paths.objects);
-                            SpinBarrier frame_done(workers);
-                            std::atomic<bool> go{false};
-                            const auto worker = [&](unsigned w) {
+                            const double s = run_frames(workers, paths.frames, [&](unsigned w, size_t f) {
                                 const size_t begin = paths.objects * w / workers;
                                 const size_t end = paths.objects * (w + 1) / workers;
-                                while (!go.load(std::memory_order_acquire)) std::this_thread::yield();
-                                for (size_t f = 1; f < paths.frames; ++f) {
-                                    tp_store_interpolate_batch(store, end - begin, paths.frame(f) + 3 * begin, 0,
-                                                               hints.data() + begin, 0, out.data() + 27 * begin, 0,
-                                                               nullptr);
-                                    frame_done.wait();
-                                }
-                            };
-                            std::vector<std::thread> pool;
-                            for (unsigned w = 0; w < workers; ++w) pool.emplace_back(worker, w);
-                            const Clock::time_point t0 = Clock::now();
-                            go.store(true, std::memory_order_release);
-                            for (std::thread& t : pool) t.join();
-                            const double s = seconds_since(t0);
+                                tp_store_interpolate_batch(store, end - begin, paths.frame(f) + 3 * begin, 0,
+                                                           hints.data() + begin, 0, out.data() + 27 * begin, 0,
+                                                           nullptr);
+                            });
                             *sink += out[0] + out[27 * (paths.objects - 1)];
                             return s;
                         }),
@@ -306,6 +343,7 @@ struct SizeResult {
     // ns per query
     double floor = 0, plain = 0, cgal = NAN, single = 0, single_compact = 0;
     double batch = 0, batch_workers1 = 0, batch_workers2 = 0, ceiling = 0;  // ceiling: measured just before the workers
+    double frame_ceiling = 0;  // the same, in the workers' frames and barrier (two_worker_frame_ceiling)
     double cold = 0, teleport = 0, outside_coherent = 0, outside_cold = 0;
     double volume = 0, volume_steps = 0;  // a 16^3 probe volume: ns and walk steps per point (bench_volume.cpp)
     WalkStats walk_coherent, walk_cold, walk_teleport, walk_outside_coherent, walk_outside_cold;
@@ -434,6 +472,7 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
             }
     r->batch = time_batch(fast.get(), paths, sink);
     r->ceiling = two_thread_ceiling();
+    r->frame_ceiling = two_worker_frame_ceiling(paths.frames);
     r->batch_workers1 = time_batch_workers(fast.get(), paths, 1, sink);
     r->batch_workers2 = time_batch_workers(fast.get(), paths, 2, sink);
     r->cold = time_points(fast.get(), scattered, false, sink);
@@ -511,6 +550,40 @@ int run_query_bench(const std::string& command) {
     return 0;
 }
 
+// `store --workers`: only the frame split over 1 and 2 persistent workers, each next to the machine's
+// two-thread ceiling measured just before it, alternated three times (a quick check of the scaling goal).
+int run_worker_bench(const std::string& command) {
+    std::printf("## Store benchmark, persistent workers only\n\ncommand: `%s`; each time is the median of %d runs\n\n",
+                command.c_str(), kRepetitions);
+    const std::string load_before = load_average();
+    std::printf("ceiling: independent arithmetic on two threads / one; frame ceiling: the same arithmetic in the "
+                "workers' frames and barrier\n\n");
+    std::printf("| probes | ceiling | frame ceiling | 1 worker (ns) | 2 workers (ns) | 2 / 1 | ceiling | frame ceiling | "
+                "2 / 1 | ceiling | frame ceiling | 2 / 1 |\n");
+    std::printf("| ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n");
+    float sink = 0;
+    for (size_t n : kProbeCounts) {
+        const std::vector<float> positions = random_probes(n, 7), sh = random_sh(n, 8);
+        const ObjectPaths paths = moving_objects(kObjects, kFrames, 0.05f * kBox, 0.95f * kBox, 11);
+        const StorePtr fast = build_store(positions, sh, 0);
+        if (!fast) return 1;
+        std::printf("| %zu |", n);
+        for (int round = 0; round < 3; ++round) {
+            const double ceiling = two_thread_ceiling(), frame_ceiling = two_worker_frame_ceiling(paths.frames);
+            const double one = time_batch_workers(fast.get(), paths, 1, &sink);
+            const double two = time_batch_workers(fast.get(), paths, 2, &sink);
+            if (round == 0)
+                std::printf(" %.2fx | %.2fx | %.1f | %.1f | %.2fx |", ceiling, frame_ceiling, one, two, one / two);
+            else
+                std::printf(" %.2fx | %.2fx | %.2fx |", ceiling, frame_ceiling, one / two);
+        }
+        std::printf("\n");
+    }
+    std::printf("\nmachine load (1-minute load average) before / after: %s / %s (sink %g)\n", load_before.c_str(),
+                load_average().c_str(), double(sink));
+    return 0;
+}
+
 }  // namespace
 
 int run_store_bench(int argc, char** argv) {
@@ -518,6 +591,7 @@ int run_store_bench(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) command += (i ? " " : "") + std::string(argv[i]);
     for (int i = 1; i < argc; ++i)
         if (!std::strcmp(argv[i], "--queries")) return run_query_bench(command);
+        else if (!std::strcmp(argv[i], "--workers")) return run_worker_bench(command);
     std::printf("## Store benchmark\n\n");
     std::printf("machine: %s, %u hardware threads; half SIMD path (F16C/AVX2/FMA): %s; compiler: %s; "
                 "tetprobe %u.%u.%u through the C ABI\n",
@@ -701,6 +775,9 @@ int run_store_bench(int argc, char** argv) {
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].ceiling;
     print_ratio("two-thread ceiling of this machine, measured just before the workers", v, "%.2fx", "-", true,
                 INFINITY, all);
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].frame_ceiling;
+    print_ratio("the same ceiling in the workers' frames and barrier (arithmetic in place of queries)", v, "%.2fx", "-",
+                true, INFINITY, all);
     for (int i = 0; i < kSizes; ++i) v[i] = 1e3 / r[i].batch_workers2;
     print_ratio("M queries/s on 2 persistent workers (stretch at 1.5k)", v, "%.1f", ">= 100 at 1.5k", false, 100.0,
                 first);
@@ -755,6 +832,9 @@ int run_store_bench(int argc, char** argv) {
                 false, 1.7, scales);
     for (int i = 0; i < kSizes; ++i) v[i] = r[i].ceiling;
     print_ratio("the machine's two-thread ceiling at that moment", v, "%.2fx", "-", true, INFINITY, all);
+    for (int i = 0; i < kSizes; ++i) v[i] = r[i].frame_ceiling;
+    print_ratio("the same ceiling in frames of arithmetic, with the workers' barrier", v, "%.2fx", "-", true, INFINITY,
+                all);
     std::printf("\n(n/a: a probe count the target does not apply to, or a ceiling below 1.8x; checksum of every "
                 "blend: %g)\n\n", double(sink));
     return 0;

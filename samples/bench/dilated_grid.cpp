@@ -77,21 +77,10 @@ DilatedGrid::DilatedGrid(const float lo[3], const float hi[3], const int dims[3]
         top_[k] = float(dims[k] - 1);
     }
     stride_[0] = record_bytes_, stride_[1] = stride_[0] * size_t(dims_[0]), stride_[2] = stride_[1] * size_t(dims_[1]);
-    for (int c = 0; c < 8; ++c)
-        corner_offsets_[c] = (c & 1 ? stride_[0] : 0) + (c & 2 ? stride_[1] : 0) + (c & 4 ? stride_[2] : 0);
+    grid_corner_offsets(stride_, corner_offsets_);
 }
 
-std::vector<float> DilatedGrid::positions() const {
-    std::vector<float> p;
-    p.reserve(3 * probe_count());
-    for (int z = 0; z < dims_[2]; ++z)
-        for (int y = 0; y < dims_[1]; ++y)
-            for (int x = 0; x < dims_[0]; ++x) {
-                const int i[3] = {x, y, z};
-                for (int k = 0; k < 3; ++k) p.push_back(lo_[k] + cell_[k] * float(i[k]));
-            }
-    return p;
-}
+std::vector<float> DilatedGrid::positions() const { return grid_positions(lo_, cell_, dims_); }
 
 void DilatedGrid::set_sh(std::vector<float> sh, const std::vector<uint8_t>& valid) {
     if (sh.size() != 27 * probe_count() || valid.size() != probe_count())

@@ -46,6 +46,23 @@ void grid_dims_for_count(const float lo[3], const float hi[3], size_t max_probes
     }
 }
 
+std::vector<float> grid_positions(const float lo[3], const float cell[3], const int dims[3]) {
+    std::vector<float> p;
+    p.reserve(3 * size_t(dims[0]) * size_t(dims[1]) * size_t(dims[2]));
+    for (int z = 0; z < dims[2]; ++z)
+        for (int y = 0; y < dims[1]; ++y)
+            for (int x = 0; x < dims[0]; ++x) {
+                const int i[3] = {x, y, z};
+                for (int k = 0; k < 3; ++k) p.push_back(lo[k] + cell[k] * float(i[k]));
+            }
+    return p;
+}
+
+void grid_corner_offsets(const size_t stride[3], size_t out_offsets[8]) {
+    for (int c = 0; c < 8; ++c)
+        out_offsets[c] = (c & 1 ? stride[0] : 0) + (c & 2 ? stride[1] : 0) + (c & 4 ? stride[2] : 0);
+}
+
 GridPeer::GridPeer(const float lo[3], const float hi[3], const int dims[3]) {
     for (int k = 0; k < 3; ++k) {
         if (dims[k] < 1) throw std::invalid_argument("GridPeer: dims must be >= 1");
@@ -60,21 +77,10 @@ GridPeer::GridPeer(const float lo[3], const float hi[3], const int dims[3]) {
         stride_[k] = dims_[k] > 1 ? step : 0;
         step *= size_t(dims_[k]);
     }
-    for (int c = 0; c < 8; ++c)
-        corner_offsets_[c] = (c & 1 ? stride_[0] : 0) + (c & 2 ? stride_[1] : 0) + (c & 4 ? stride_[2] : 0);
+    grid_corner_offsets(stride_, corner_offsets_);
 }
 
-std::vector<float> GridPeer::positions() const {
-    std::vector<float> p;
-    p.reserve(3 * probe_count());
-    for (int z = 0; z < dims_[2]; ++z)
-        for (int y = 0; y < dims_[1]; ++y)
-            for (int x = 0; x < dims_[0]; ++x) {
-                const int i[3] = {x, y, z};
-                for (int k = 0; k < 3; ++k) p.push_back(lo_[k] + cell_[k] * float(i[k]));
-            }
-    return p;
-}
+std::vector<float> GridPeer::positions() const { return grid_positions(lo_, cell_, dims_); }
 
 void GridPeer::set_sh(const std::vector<float>& sh) {
     if (sh.size() != 27 * probe_count()) throw std::invalid_argument("GridPeer::set_sh: 27 floats per probe");

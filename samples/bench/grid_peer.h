@@ -15,6 +15,13 @@ namespace bench {
 // gets one probe.
 void grid_dims_for_count(const float lo[3], const float hi[3], size_t max_probes, int out_dims[3]);
 
+// The probe positions of a grid, x fastest, then y, then z: lo + cell * index on each axis.
+std::vector<float> grid_positions(const float lo[3], const float cell[3], const int dims[3]);
+
+// Byte offsets of a grid cell's 8 corner records from its base record (corner c: +x if c & 1, +y if
+// c & 2, +z if c & 4), for records stride[k] bytes apart along axis k.
+void grid_corner_offsets(const size_t stride[3], size_t out_offsets[8]);
+
 class GridPeer {
 public:
     GridPeer(const float lo[3], const float hi[3], const int dims[3]);

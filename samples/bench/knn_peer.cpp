@@ -10,6 +10,24 @@
 
 namespace bench {
 
+namespace {
+
+// Keeps probe p (squared distance d2) among the `found` nearest so far, sorted by distance, if it is
+// nearer than the farthest of a full list.
+inline void keep_if_nearer(uint32_t p, float d2, uint32_t out_probes[KnnPeer::kNeighbours],
+                           float best_d2[KnnPeer::kNeighbours], int& found) {
+    constexpr int n = KnnPeer::kNeighbours;
+    if (found == n && !(d2 < best_d2[n - 1])) return;
+    int slot = found < n ? found++ : n - 1;
+    while (slot > 0 && best_d2[slot - 1] > d2) {
+        best_d2[slot] = best_d2[slot - 1], out_probes[slot] = out_probes[slot - 1];
+        --slot;
+    }
+    best_d2[slot] = d2, out_probes[slot] = p;
+}
+
+}  // namespace
+
 KnnPeer::KnnPeer(const std::vector<float>& positions, const std::vector<float>& sh, const float* query_lo,
                  const float* query_hi)
     : positions_(positions) {
@@ -110,13 +128,7 @@ int KnnPeer::nearest(const float position[3], uint32_t out_probes[kNeighbours], 
             const float dx = positions_[3 * p] - position[0], dy = positions_[3 * p + 1] - position[1],
                         dz = positions_[3 * p + 2] - position[2];
             const float d2 = dx * dx + dy * dy + dz * dz;
-            if (found == kNeighbours && !(d2 < best_d2[kNeighbours - 1])) continue;
-            int slot = found < kNeighbours ? found++ : kNeighbours - 1;
-            while (slot > 0 && best_d2[slot - 1] > d2) {
-                best_d2[slot] = best_d2[slot - 1], out_probes[slot] = out_probes[slot - 1];
-                --slot;
-            }
-            best_d2[slot] = d2, out_probes[slot] = p;
+            keep_if_nearer(p, d2, out_probes, best_d2, found);
         }
         for (int i = 0; i < found; ++i) out_distances[i] = std::sqrt(best_d2[i]);
         return found;
@@ -152,13 +164,7 @@ int KnnPeer::nearest(const float position[3], uint32_t out_probes[kNeighbours], 
                             const float d = positions_[3 * p + k] - position[k];
                             d2 += d * d;
                         }
-                        if (found == kNeighbours && !(d2 < best_d2[kNeighbours - 1])) continue;
-                        int slot = found < kNeighbours ? found++ : kNeighbours - 1;
-                        while (slot > 0 && best_d2[slot - 1] > d2) {
-                            best_d2[slot] = best_d2[slot - 1], out_probes[slot] = out_probes[slot - 1];
-                            --slot;
-                        }
-                        best_d2[slot] = d2, out_probes[slot] = p;
+                        keep_if_nearer(p, d2, out_probes, best_d2, found);
                     }
                 }
     }

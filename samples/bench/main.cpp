@@ -1,5 +1,6 @@
 // tetprobe_bench [store|bake|locate|probes|all|methods|precision|leak|levels] [--out DIR] [--quick]: the store
-// benchmark (this folder's bench_store.cpp) and the bake benchmark (bench_bake.cpp), and the parts of
+// benchmark (this folder's bench_store.cpp; `store --queries` and `store --workers` are its quick query and
+// persistent-worker parts) and the bake benchmark (bench_bake.cpp), and the parts of
 // the report that write JSON into DIR for samples/bench/report.py: methods and precision
 // (bench_methods.cpp, bench_precision.cpp), locate and probes (bench_locate.cpp,
 // bench_probe_count.cpp), leak (bench_leak.cpp) and the real levels (bench_levels.cpp); bake writes bake.json too
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
     const bool probes = all || !std::strcmp(which, "probes");
     if (!store && !bake && !locate && !probes) {
         std::fprintf(stderr, "usage: tetprobe_bench [store|bake|locate|probes|all|methods|precision|leak|levels] [--out DIR] "
-                             "[--quick]\n");
+                             "[--quick]\n       tetprobe_bench store --queries | --workers   (quick parts of the store benchmark)\n");
         return 2;
     }
     int status = 0;
