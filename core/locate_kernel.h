@@ -26,7 +26,7 @@ struct LocateKernel {
     // One query at a local position, from hint (-1 or out of range: the start grid's cell), answered
     // in out (every field written, whatever it held: answers are written in place, never copied whole).
     void (*locate)(const Store::Impl& store, const float local[3], int32_t hint, Location& out);
-    // count <= kMaxBatchGroup queries walked together (several cells' orientations computed at once),
+    // count <= kMaxBatchGroup queries, one after the other with their loads asked for ahead,
     // out as above.
     void (*locate_batch)(const Store::Impl& store, size_t count, const float (*local)[3], const int32_t* hints,
                          Location* out);
