@@ -8,19 +8,21 @@
 namespace tetprobe {
 
 namespace {
-// The calling thread's message: a built one (t_last_error), or one without allocation (t_message:
-// a static string, or t_formatted), which the queries use.
-thread_local std::string t_last_error;
+// The calling thread's message, or null for none: a literal, t_formatted, or t_built's text. Every
+// call clears it with this one thread-local write (each thread-local access from a shared library is
+// a call into the dynamic linker, and a std::string's costs more: a guard and an init check).
 thread_local const char* t_message = nullptr;
 thread_local char t_formatted[320];
+thread_local std::string t_built;
 }
 
 tp_status fail(tp_status status, const std::string& message) {
     t_message = nullptr;
     try {
-        t_last_error = message;
+        t_built = message;
+        t_message = t_built.c_str();
     } catch (...) {
-        t_last_error.clear();  // out of memory while recording: an empty message is still safe
+        // out of memory while recording: no message (tp_last_error gives "") is still safe
     }
     return status;
 }
@@ -39,10 +41,7 @@ tp_status fail_formatted(tp_status status, const char* format, ...) {
     return status;
 }
 
-void clear_error() {
-    t_message = nullptr;
-    t_last_error.clear();
-}
+void clear_error() { t_message = nullptr; }
 
 }  // namespace tetprobe
 
@@ -50,7 +49,7 @@ extern "C" {
 
 TP_API uint32_t tp_version(void) { return TP_VERSION; }
 
-TP_API const char* tp_last_error(void) { return tetprobe::t_message ? tetprobe::t_message : tetprobe::t_last_error.c_str(); }
+TP_API const char* tp_last_error(void) { return tetprobe::t_message ? tetprobe::t_message : ""; }
 
 TP_API const char* tp_status_name(tp_status status) {
     // C callers may pass any int; reading it as the enum would be undefined in C++ when out of range.
