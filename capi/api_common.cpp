@@ -1,6 +1,7 @@
 // Version, thread-local errors and status names.
 #include "boundary.h"
 
+#include <atomic>
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
@@ -9,18 +10,27 @@ namespace tetprobe {
 
 namespace {
 // The calling thread's message, or null for none: a literal, t_formatted, or t_built's text. Every
-// call clears it with this one thread-local write (each thread-local access from a shared library is
-// a call into the dynamic linker, and a std::string's costs more: a guard and an init check).
+// call clears it with this one thread-local write at most (each thread-local access from a shared library
+// is a call into the dynamic linker, and a std::string's costs more: a guard and an init check).
 thread_local const char* t_message = nullptr;
 thread_local char t_formatted[320];
 thread_local std::string t_built;
+// Set for good when any thread first records a message. Until then every thread's t_message is null,
+// so clearing can skip the thread-local access (about 3 ns of a 35 ns query). A thread that records one
+// sets this itself first, so it always sees it when it next clears (program order; relaxed is enough).
+std::atomic<bool> g_recorded{false};
+
+void record(const char* message) {
+    g_recorded.store(true, std::memory_order_relaxed);
+    t_message = message;
+}
 }
 
 tp_status fail(tp_status status, const std::string& message) {
-    t_message = nullptr;
+    record(nullptr);
     try {
         t_built = message;
-        t_message = t_built.c_str();
+        record(t_built.c_str());
     } catch (...) {
         // out of memory while recording: no message (tp_last_error gives "") is still safe
     }
@@ -28,7 +38,7 @@ tp_status fail(tp_status status, const std::string& message) {
 }
 
 tp_status fail_static(tp_status status, const char* message) {
-    t_message = message;
+    record(message);
     return status;
 }
 
@@ -37,11 +47,13 @@ tp_status fail_formatted(tp_status status, const char* format, ...) {
     va_start(arguments, format);
     std::vsnprintf(t_formatted, sizeof t_formatted, format, arguments);
     va_end(arguments);
-    t_message = t_formatted;
+    record(t_formatted);
     return status;
 }
 
-void clear_error() { t_message = nullptr; }
+void clear_error() {
+    if (g_recorded.load(std::memory_order_relaxed)) t_message = nullptr;
+}
 
 }  // namespace tetprobe
 
