@@ -52,6 +52,10 @@ struct ScalarOrientations {
         o.bound = kOrient3dBoundScale * ((mx * my) * mz);
         return o;
     }
+    // Every D certainly positive: the filter decides that the cell holds the query.
+    static inline bool all_above_bound(const Orientations& o) {
+        return (o.D[0] > o.bound) & (o.D[1] > o.bound) & (o.D[2] > o.bound) & (o.D[3] > o.bound);
+    }
 };
 
 #ifdef TETPROBE_X86_64
@@ -93,6 +97,10 @@ struct Avx2Orientations {
         const double mx = largest_magnitude(x), my = largest_magnitude(y), mz = largest_magnitude(z);
         o.bound = kOrient3dBoundScale * ((mx * my) * mz);
         return o;
+    }
+    // ScalarOrientations::all_above_bound in one compare of the four (the same > on the same values).
+    __attribute__((target("avx2"))) static inline bool all_above_bound(const Orientations& o) {
+        return _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(o.D), _mm256_set1_pd(o.bound), _CMP_GT_OQ)) == 15;
     }
 };
 

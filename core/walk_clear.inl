@@ -28,7 +28,7 @@ TP_WALK_TARGET inline __attribute__((always_inline)) bool TP_WALK_ISA(walk_clear
                                    cells.position(r.vertices[2]), cells.position(r.vertices[3])};
         const Orientations o = TP_WALK_CLEAR_KERNEL::of(P, q);
         const double* D = o.D;
-        if ((D[0] > o.bound) & (D[1] > o.bound) & (D[2] > o.bound) & (D[3] > o.bound)) {
+        if (TP_WALK_CLEAR_KERNEL::all_above_bound(o)) {
             const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
             for (int k = 0; k < 4; ++k) weights[k] = float(D[k] * scale);
             *cell = c;
