@@ -22,8 +22,18 @@ TP_WALK_TARGET inline __attribute__((always_inline)) bool TP_WALK_ISA(walk_clear
         const CellRecord<Index>& r = cells.records[c];
         for (int k = 0; k < 4; ++k) __builtin_prefetch(cells.s.sh + size_t(r.vertices[k]) * cells.s.sh_stride);
     }
+    bool stepped = false;
     while (c < inner && *steps <= step_cap) {
         const CellRecord<Index>& r = cells.records[c];
+        // A walk that has stepped once often steps again: ask for the neighbours' records while the
+        // orientations compute, so that the next cell's is on its way when the exit is known. (Not in
+        // the start cell, which usually holds the query: there the four requests cost more than they save.)
+        if (stepped)
+            for (int k = 0; k < 4; ++k) {
+                const uint32_t n = r.neighbours[k];
+                __builtin_prefetch(&cells.records[n == none_index<Index>() ? c : n]);  // no pointer out of the array
+            }
+        stepped = true;
         const float* const P[4] = {cells.position(r.vertices[0]), cells.position(r.vertices[1]),
                                    cells.position(r.vertices[2]), cells.position(r.vertices[3])};
         const Orientations o = TP_WALK_CLEAR_KERNEL::of(P, q);
