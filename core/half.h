@@ -21,10 +21,13 @@ void halves_to_floats_scalar(const uint16_t* in, float* out, size_t n);
 // paths give the same bits, see sh_blend.h). Reads exactly 27 halves from each pointer; pointers may repeat.
 void blend_sh_halves(const uint16_t* const sh[4], const float weights[4], float out[27]);
 void blend_sh_halves_scalar(const uint16_t* const sh[4], const float weights[4], float out[27]);
+// The same on a store's SH records (sh_blend.h), each pointer read where the caller put it.
+void blend_half_records_scalar(const uint8_t* const records[4], const float weights[4], float out[27]);
 
 #if defined(__x86_64__)
 // The F16C kernel itself, for a caller that has checked half_simd_available() once.
 void blend_sh_halves_f16c(const uint16_t* const sh[4], const float weights[4], float out[27]);
+void blend_half_records_f16c(const uint8_t* const records[4], const float weights[4], float out[27]);
 #endif
 
 // True when the dispatched paths use the F16C/AVX2/FMA code on this CPU.

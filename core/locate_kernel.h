@@ -20,18 +20,28 @@ InstructionSet detect_instruction_set();
 constexpr size_t kMaxBatchGroup = 64;
 
 // A store's walk compiled for its index width, its dimension and an instruction set, chosen once when
-// the store is loaded (so no query tests any of them). Both functions give the same answer for a
+// the store is loaded (so no query tests any of them). The functions give the same answer for a
 // query, bit for bit, and the same as the exhaustive search inside the hull.
 struct LocateKernel {
     // One query at a local position, from hint (-1 or out of range: the start grid's cell), answered
     // in out (every field written, whatever it held: answers are written in place, never copied whole).
     void (*locate)(const Store::Impl& store, const float local[3], int32_t hint, Location& out);
-    // count <= kMaxBatchGroup queries walked together (several cells' orientations computed at once),
-    // out as above.
+    // count <= kMaxBatchGroup queries, one after the other with their loads asked for ahead, out as above.
     void (*locate_batch)(const Store::Impl& store, size_t count, const float (*local)[3], const int32_t* hints,
                          Location* out);
+    // locate and answer_sh in one, for a store without leak control (null for one with it: its weights are
+    // weighed between the two): from *hint as above, the SH into out_sh and the answer's cell into *hint.
+    // The lean walk's answer goes straight to the blend, with no Location in between.
+    Status (*interpolate)(const Store::Impl& store, const float local[3], int32_t* hint, float out_sh[27]);
+    // count <= kMaxBatchGroup of them: hints[i] in and out, out_sh[i] (27 floats each), status[i].
+    void (*interpolate_batch)(const Store::Impl& store, size_t count, const float (*local)[3], int32_t* hints,
+                              float* const* out_sh, Status* status);
     InstructionSet instruction_set;
 };
 LocateKernel choose_locate_kernel(const Store::Impl& store, InstructionSet instruction_set);
+
+// A located query's SH (the store's blend; zero when it failed) and occlusion (when out_occlusion is not
+// null). Returns its status. The front end's (store_queries.cpp), which the kernels call on their rare path.
+Status answer_sh(const Store::Impl& store, const Location& loc, float out_sh[27], float* out_occlusion);
 
 }  // namespace tetprobe

@@ -21,12 +21,6 @@ inline float half_at(const uint8_t* record, int index) {
 
 // ---- portable kernels
 
-void blend_half_portable(const uint8_t* const records[4], const float weights[4], float out[27]) {
-    const uint16_t* sh[4];
-    for (int k = 0; k < 4; ++k) sh[k] = reinterpret_cast<const uint16_t*>(records[k]);
-    blend_sh_halves_scalar(sh, weights, out);
-}
-
 void blend_half_l1_portable(const uint8_t* const records[4], const float weights[4], float out[27]) {
     for (int c = 0; c < 3; ++c) {
         for (int i = 0; i < 4; ++i) {
@@ -59,12 +53,6 @@ void blend_unorm8_portable(const uint8_t* const records[4], const float weights[
 #if defined(__x86_64__)
 
 #define TP_SIMD __attribute__((target("avx2,f16c,fma")))
-
-void blend_half_simd(const uint8_t* const records[4], const float weights[4], float out[27]) {
-    const uint16_t* sh[4];
-    for (int k = 0; k < 4; ++k) sh[k] = reinterpret_cast<const uint16_t*>(records[k]);
-    blend_sh_halves_f16c(sh, weights, out);
-}
 
 // Four halves at record + 2 * index, without reading past them.
 TP_SIMD inline __m128 load_4_halves(const uint8_t* record, int index) {
@@ -188,7 +176,7 @@ ShBlendFunction sh_blend_function_portable(ShEncoding encoding) {
         case kShHalfL1: return blend_half_l1_portable;
         case kShUnorm8: return blend_unorm8_portable<9>;
         case kShUnorm8L1: return blend_unorm8_portable<4>;
-        default: return blend_half_portable;
+        default: return blend_half_records_scalar;
     }
 }
 
@@ -199,7 +187,7 @@ ShBlendFunction sh_blend_function(ShEncoding encoding, bool simd) {
             case kShHalfL1: return blend_half_l1_simd;
             case kShUnorm8: return blend_unorm8_simd;
             case kShUnorm8L1: return blend_unorm8_l1_simd;
-            default: return blend_half_simd;
+            default: return blend_half_records_f16c;
         }
     }
 #else

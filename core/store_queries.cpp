@@ -1,6 +1,8 @@
 // The query front end: every query of a store — interpolate (with or without occlusion), locate,
-// weights and their batches — goes through one pipeline, answer(): to the store's frame, locate with
-// the kernel the store chose at load, weigh for leaks; then the caller's outputs. Nothing here
+// weights and their batches — goes through the kernels the store chose at load (locate_kernel.h): to the
+// store's frame, locate, weigh for leaks (answer()), then the caller's outputs. Interpolations without
+// occlusion on a store without leak control take the kernel's fused locate + blend, which blends the lean
+// walk's answer straight into the caller's buffer (the same bits as locate + answer_sh). Nothing here
 // allocates, throws or starts a thread: a batch runs on the calling thread (an engine splits a frame
 // into ranges for its own workers, see tp_batch_options).
 #include "core/leak_control.h"
@@ -56,22 +58,22 @@ void blend_occlusion(const Store::Impl& s, const Location& loc, float out[4]) {
     }
 }
 
-// SH and occlusion of a location (zero when it failed). Returns its status.
-Status answer_sh(const Store::Impl& s, const Location& loc, float out_sh[27], float* out_occlusion) {
-    if (loc.status != Status::ok) {
-        std::fill(out_sh, out_sh + 27, 0.0f);
-        if (out_occlusion) std::fill(out_occlusion, out_occlusion + kOcclusionChannels, 0.0f);
-        return loc.status;
-    }
-    blend(s, loc, out_sh);
-    if (out_occlusion) blend_occlusion(s, loc, out_occlusion);
-    return Status::ok;
-}
-
 // Element i of a caller's strided buffer, as bytes: strides need no alignment, so every element is
 // read and written with memcpy, never through a typed pointer.
 const uint8_t* strided(const void* base, size_t i, size_t stride) { return static_cast<const uint8_t*>(base) + i * stride; }
 uint8_t* strided(void* base, size_t i, size_t stride) { return static_cast<uint8_t*>(base) + i * stride; }
+
+// A group's local positions and start hints (-1 without hints) from the caller's strided buffers.
+void read_group(const Store::Impl& s, size_t group, size_t n, const float* positions, size_t position_stride,
+                const int32_t* hints, size_t hint_stride, float (*local)[3], int32_t* start) {
+    for (size_t j = 0; j < n; ++j) {
+        float world[3];
+        std::memcpy(world, strided(positions, group + j, position_stride), sizeof world);
+        local_position(s, world, local[j]);
+        start[j] = -1;
+        if (hints) std::memcpy(&start[j], strided(hints, group + j, hint_stride), sizeof start[j]);
+    }
+}
 
 // Runs a batch in groups of kMaxBatchGroup through answer() (reading and writing the hints), then
 // hands every location to output(i, loc). Returns ok, or the status of the first query that failed
@@ -87,13 +89,7 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     Location located[kMaxBatchGroup];
     for (size_t group = 0; group < count; group += kMaxBatchGroup) {
         const size_t n = std::min(kMaxBatchGroup, count - group);
-        for (size_t j = 0; j < n; ++j) {
-            float world[3];
-            std::memcpy(world, strided(positions, group + j, position_stride), sizeof world);
-            local_position(s, world, local[j]);
-            start[j] = -1;
-            if (hints) std::memcpy(&start[j], strided(hints, group + j, hint_stride), sizeof start[j]);
-        }
+        read_group(s, group, n, positions, position_stride, hints, hint_stride, local, start);
         if (hints || !chain_hints) {
             answer(s, n, local, start, located);
         } else {  // each query starts where the previous one ended: one after the other
@@ -114,7 +110,59 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     return failure;
 }
 
+// A batch of interpolations on the store's fused kernel (a store without leak control, no occlusion):
+// groups as run_batch, each query's SH blended straight into the caller's buffer when it is aligned for
+// floats (else into a local one copied out: a misaligned stride is legal). Same answers as run_batch.
+Status run_interpolate_batch(const Store::Impl& s, size_t count, const float* positions, size_t position_stride,
+                             int32_t* hints, size_t hint_stride, bool chain_hints, float* out_sh, size_t sh_stride,
+                             size_t* first_outside) {
+    const bool direct = reinterpret_cast<uintptr_t>(out_sh) % alignof(float) == 0 && sh_stride % alignof(float) == 0;
+    size_t first = count;
+    Status failure = Status::ok;
+    int32_t chained = -1;
+    float local[kMaxBatchGroup][3];
+    int32_t cell[kMaxBatchGroup];
+    Status status[kMaxBatchGroup];
+    float* target[kMaxBatchGroup];
+    float scratch[kMaxBatchGroup][27];  // a misaligned buffer's answers, copied out
+    for (size_t group = 0; group < count; group += kMaxBatchGroup) {
+        const size_t n = std::min(kMaxBatchGroup, count - group);
+        read_group(s, group, n, positions, position_stride, hints, hint_stride, local, cell);
+        for (size_t j = 0; j < n; ++j)
+            target[j] = direct ? reinterpret_cast<float*>(strided(out_sh, group + j, sh_stride)) : scratch[j];
+        if (hints || !chain_hints) {
+            s.locate.interpolate_batch(s, n, local, cell, target, status);
+        } else {  // each query starts where the previous one ended: one after the other
+            for (size_t j = 0; j < n; ++j) {
+                cell[j] = chained;
+                status[j] = s.locate.interpolate(s, local[j], &cell[j], target[j]);
+                chained = cell[j];
+            }
+        }
+        for (size_t j = 0; j < n; ++j) {
+            const size_t i = group + j;
+            if (hints) std::memcpy(strided(hints, i, hint_stride), &cell[j], sizeof cell[j]);
+            if (!direct) std::memcpy(strided(out_sh, i, sh_stride), scratch[j], sizeof scratch[j]);
+            if (status[j] != Status::ok && first == count) first = i, failure = status[j];
+        }
+    }
+    if (first_outside) *first_outside = first;
+    return failure;
+}
+
 }  // namespace
+
+Status answer_sh(const Store::Impl& s, const Location& loc, float out_sh[27], float* out_occlusion) {
+    if (loc.status != Status::ok) {
+        std::fill(out_sh, out_sh + 27, 0.0f);
+        if (out_occlusion) std::fill(out_occlusion, out_occlusion + kOcclusionChannels, 0.0f);
+        return loc.status;
+    }
+    blend(s, loc, out_sh);
+    if (out_occlusion) blend_occlusion(s, loc, out_occlusion);
+    return Status::ok;
+}
+
 
 Location Store::locate(const float world_position[3], int32_t hint) const {
     Location loc;
@@ -129,6 +177,15 @@ Location Store::locate_exhaustive(const float world_position[3], Cells cells) co
 }
 
 Status Store::interpolate(const float world_position[3], int32_t* hint, float out_sh[27], float out_occlusion[4]) const {
+    const Impl& s = *impl_;
+    if (!out_occlusion && s.locate.interpolate) {
+        float local[3];
+        local_position(s, world_position, local);
+        int32_t cell = hint ? *hint : -1;
+        const Status status = s.locate.interpolate(s, local, &cell, out_sh);
+        if (hint) *hint = cell;
+        return status;
+    }
     Location loc;
     answer_one(*impl_, world_position, hint ? *hint : -1, loc);
     if (hint) *hint = loc.cell;
@@ -139,6 +196,9 @@ Status Store::interpolate_batch(size_t count, const float* positions, size_t pos
                                 size_t hint_stride, float* out_sh, size_t sh_stride, const BatchSettings& settings,
                                 size_t* first_outside, float* out_occlusion, size_t occlusion_stride) const {
     const Impl& s = *impl_;
+    if (!out_occlusion && s.locate.interpolate_batch)
+        return run_interpolate_batch(s, count, positions, position_stride, hints, hint_stride, settings.chain_hints, out_sh,
+                                     sh_stride, first_outside);
     // An aligned float buffer (the usual case) takes the blend directly: blending into a local array and
     // copying it out costs a store-forwarding stall on every query (about 5 ns at 1.5k probes).
     const bool direct = reinterpret_cast<uintptr_t>(out_sh) % alignof(float) == 0 && sh_stride % alignof(float) == 0;

@@ -5,9 +5,7 @@
 // x, which is Shewchuk's orient3d expression up to the order of its three terms, so his bound
 // (7 + 56 eps) eps * permanent holds; the permanent is bounded by 6 * max|x| * max|y| * max|z|.
 // Two implementations with the same operations in the same order, so that they agree bit for bit:
-// portable scalar code, and AVX2 (all four at once), chosen at run time on x86-64. The lane kernels
-// compute four queries' cells at once (structure of arrays, one query per lane) with the same
-// operations again: the AVX2 one computes each D[k] of four queries in one vector.
+// portable scalar code, and AVX2 (all four at once), chosen at run time on x86-64.
 #pragma once
 
 #include "core/orientation.h"
@@ -54,22 +52,9 @@ struct ScalarOrientations {
         o.bound = kOrient3dBoundScale * ((mx * my) * mz);
         return o;
     }
-};
-
-// Four cells' orientations with four queries: D[k][lane], bound[lane].
-struct LaneOrientations {
-    double D[4][4];
-    double bound[4];
-};
-
-struct ScalarLaneOrientations {
-    // P[lane]: the four vertices of that lane's cell; q[lane]: its query.
-    static inline void of(const float* const P[4][4], const float* const q[4], LaneOrientations& out) {
-        for (int lane = 0; lane < 4; ++lane) {
-            const Orientations o = ScalarOrientations::of(P[lane], q[lane]);
-            for (int k = 0; k < 4; ++k) out.D[k][lane] = o.D[k];
-            out.bound[lane] = o.bound;
-        }
+    // Every D certainly positive: the filter decides that the cell holds the query.
+    static inline bool all_above_bound(const Orientations& o) {
+        return (o.D[0] > o.bound) & (o.D[1] > o.bound) & (o.D[2] > o.bound) & (o.D[3] > o.bound);
     }
 };
 
@@ -113,57 +98,9 @@ struct Avx2Orientations {
         o.bound = kOrient3dBoundScale * ((mx * my) * mz);
         return o;
     }
-};
-
-struct Avx2LaneOrientations {
-    // The x, y, z of four floats read 16 bytes each (as Avx2Orientations reads a vertex), in double.
-    __attribute__((target("avx2"))) static inline void transposed(const float* a, const float* b, const float* c,
-                                                                  const float* d, __m256d& x, __m256d& y, __m256d& z) {
-        __m128 p0 = _mm_loadu_ps(a), p1 = _mm_loadu_ps(b), p2 = _mm_loadu_ps(c), p3 = _mm_loadu_ps(d);
-        _MM_TRANSPOSE4_PS(p0, p1, p2, p3);
-        x = _mm256_cvtps_pd(p0);
-        y = _mm256_cvtps_pd(p1);
-        z = _mm256_cvtps_pd(p2);
-    }
-    __attribute__((target("avx2"))) static inline __m256d magnitude(__m256d v) {
-        return _mm256_and_pd(v, _mm256_castsi256_pd(_mm256_set1_epi64x(0x7fffffffffffffffll)));
-    }
-    // ScalarOrientations::det, lane by lane.
-    __attribute__((target("avx2"))) static inline __m256d det(__m256d xi, __m256d xj, __m256d xl, __m256d yi,
-                                                              __m256d yj, __m256d yl, __m256d zi, __m256d zj,
-                                                              __m256d zl) {
-        const __m256d t1 = _mm256_sub_pd(_mm256_mul_pd(yj, zl), _mm256_mul_pd(yl, zj));
-        const __m256d t2 = _mm256_sub_pd(_mm256_mul_pd(yi, zl), _mm256_mul_pd(yl, zi));
-        const __m256d t3 = _mm256_sub_pd(_mm256_mul_pd(yi, zj), _mm256_mul_pd(yj, zi));
-        return _mm256_add_pd(_mm256_sub_pd(_mm256_mul_pd(xi, t1), _mm256_mul_pd(xj, t2)), _mm256_mul_pd(xl, t3));
-    }
-    __attribute__((target("avx2"), always_inline)) static inline void of(const float* const P[4][4],
-                                                                         const float* const q[4],
-                                                                         LaneOrientations& out) {
-        // The queries element by element (a query's 3 floats may end its buffer).
-        const __m256d qx = _mm256_set_pd(q[3][0], q[2][0], q[1][0], q[0][0]);
-        const __m256d qy = _mm256_set_pd(q[3][1], q[2][1], q[1][1], q[0][1]);
-        const __m256d qz = _mm256_set_pd(q[3][2], q[2][2], q[1][2], q[0][2]);
-        __m256d x[4], y[4], z[4];
-        for (int k = 0; k < 4; ++k) {
-            transposed(P[0][k], P[1][k], P[2][k], P[3][k], x[k], y[k], z[k]);
-            x[k] = _mm256_sub_pd(x[k], qx);
-            y[k] = _mm256_sub_pd(y[k], qy);
-            z[k] = _mm256_sub_pd(z[k], qz);
-        }
-        const __m256d negate = _mm256_set1_pd(-0.0);
-        _mm256_storeu_pd(out.D[0], det(x[1], x[2], x[3], y[1], y[2], y[3], z[1], z[2], z[3]));
-        _mm256_storeu_pd(out.D[1], _mm256_xor_pd(det(x[0], x[2], x[3], y[0], y[2], y[3], z[0], z[2], z[3]), negate));
-        _mm256_storeu_pd(out.D[2], det(x[0], x[1], x[3], y[0], y[1], y[3], z[0], z[1], z[3]));
-        _mm256_storeu_pd(out.D[3], _mm256_xor_pd(det(x[0], x[1], x[2], y[0], y[1], y[2], z[0], z[1], z[2]), negate));
-        const __m256d mx = _mm256_max_pd(_mm256_max_pd(magnitude(x[0]), magnitude(x[2])),
-                                         _mm256_max_pd(magnitude(x[1]), magnitude(x[3])));
-        const __m256d my = _mm256_max_pd(_mm256_max_pd(magnitude(y[0]), magnitude(y[2])),
-                                         _mm256_max_pd(magnitude(y[1]), magnitude(y[3])));
-        const __m256d mz = _mm256_max_pd(_mm256_max_pd(magnitude(z[0]), magnitude(z[2])),
-                                         _mm256_max_pd(magnitude(z[1]), magnitude(z[3])));
-        _mm256_storeu_pd(out.bound,
-                         _mm256_mul_pd(_mm256_set1_pd(kOrient3dBoundScale), _mm256_mul_pd(_mm256_mul_pd(mx, my), mz)));
+    // ScalarOrientations::all_above_bound in one compare of the four (the same > on the same values).
+    __attribute__((target("avx2"))) static inline bool all_above_bound(const Orientations& o) {
+        return _mm256_movemask_pd(_mm256_cmp_pd(_mm256_loadu_pd(o.D), _mm256_set1_pd(o.bound), _CMP_GT_OQ)) == 15;
     }
 };
 

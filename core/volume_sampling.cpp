@@ -4,6 +4,7 @@
 #include "core/unity_sh_constants.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -87,14 +88,19 @@ Status sample_volume(const Store& store, const VolumeGrid& grid, VolumeFormat fo
             for (uint32_t xx = 0; xx < nx; ++xx) {
                 const uint32_t x = row % 2 == 0 ? xx : nx - 1 - xx;
                 const float position[3] = {xs[x], ys[y], zs[z]};
+                unsigned char* const at = base + x * strides.point + y * strides.row + z * strides.slice;
+                // L2 into a float-aligned point: the query blends straight into it (a copy of a buffer just
+                // written costs more than the copy itself: a store-forwarding stall).
+                const bool direct = format == VolumeFormat::sh_l2 && reinterpret_cast<uintptr_t>(at) % alignof(float) == 0;
                 float sh[27];
-                const Status status = store.interpolate(position, &carried, sh);
+                float* const target = direct ? reinterpret_cast<float*>(at) : sh;
+                const Status status = store.interpolate(position, &carried, target);
                 if (status != Status::ok && result == Status::ok) {
                     result = status;
                     first_failed[0] = x, first_failed[1] = y, first_failed[2] = z;
                 }
                 if (row == 0 && xx == 0) first_cell = carried;
-                write_point(sh, format, strides, base + x * strides.point + y * strides.row + z * strides.slice);
+                if (!direct) write_point(sh, format, strides, at);
             }
         }
     }

@@ -42,33 +42,55 @@ inline uint32_t walk_step_cap(const Store::Impl& s) { return s.cell_count + 64; 
 template <class Index, uint32_t D, bool Avx2>
 void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_t steps, Location& loc);
 
-#define TP_WALK_CLEAR_NAME walk_clear_portable
-#define TP_LOCATE_BATCH_NAME locate_batch_portable
+// The cell a query starts in: its hint when that is a cell, else the start grid's cell.
+template <class Index>
+inline uint32_t start_of(const Cells<Index>& cells, const float q[3], int32_t hint) {
+    return hint >= 0 && uint32_t(hint) < cells.s.cell_count ? uint32_t(hint) : cells.start_cell(q);
+}
+
+// A batch's loads asked for ahead (walk_clear.inl): the hinted cell records of its first queries, then
+// at query i the record of query i + kRecordAhead and the vertex positions of query i + kPositionsAhead.
+constexpr size_t kRecordAhead = 16, kPositionsAhead = 8;
+template <class Index>
+inline uint32_t hinted_inner_cell(const Cells<Index>& cells, const int32_t* hints, size_t i) {
+    const int32_t hint = hints[i];
+    return hint >= 0 && uint32_t(hint) < cells.s.inner_cell_count ? uint32_t(hint) : kNoCell;
+}
+template <class Index>
+inline void prefetch_first(const Cells<Index>& cells, size_t count, const int32_t* hints) {
+    for (size_t i = 0; i < count && i < kRecordAhead; ++i) {
+        const uint32_t cell = hinted_inner_cell(cells, hints, i);
+        if (cell != kNoCell) __builtin_prefetch(&cells.records[cell]);
+    }
+}
+template <class Index>
+inline void prefetch_ahead(const Cells<Index>& cells, size_t i, size_t count, const int32_t* hints) {
+    const uint32_t record = i + kRecordAhead < count ? hinted_inner_cell(cells, hints, i + kRecordAhead) : kNoCell;
+    if (record != kNoCell) __builtin_prefetch(&cells.records[record]);
+    const uint32_t ahead = i + kPositionsAhead < count ? hinted_inner_cell(cells, hints, i + kPositionsAhead) : kNoCell;
+    if (ahead != kNoCell)
+        for (uint32_t k = 0; k < 4; ++k) __builtin_prefetch(cells.position(cells.vertex(ahead, k)));
+}
+
+#define TP_WALK_ISA(name) name##_portable
 #define TP_WALK_CLEAR_KERNEL ScalarOrientations
-#define TP_LANE_KERNEL ScalarLaneOrientations
 #define TP_WALK_AVX2 false
 #define TP_WALK_TARGET
 #include "core/walk_clear.inl"
-#undef TP_WALK_CLEAR_NAME
-#undef TP_LOCATE_BATCH_NAME
+#undef TP_WALK_ISA
 #undef TP_WALK_CLEAR_KERNEL
-#undef TP_LANE_KERNEL
 #undef TP_WALK_AVX2
 #undef TP_WALK_TARGET
 #ifdef TETPROBE_X86_64
 #pragma GCC push_options
 #pragma GCC target("avx2")
-#define TP_WALK_CLEAR_NAME walk_clear_avx2
-#define TP_LOCATE_BATCH_NAME locate_batch_avx2
+#define TP_WALK_ISA(name) name##_avx2
 #define TP_WALK_CLEAR_KERNEL Avx2Orientations
-#define TP_LANE_KERNEL Avx2LaneOrientations
 #define TP_WALK_AVX2 true
 #define TP_WALK_TARGET __attribute__((target("avx2")))  // clang has no target pragma
 #include "core/walk_clear.inl"
-#undef TP_WALK_CLEAR_NAME
-#undef TP_LOCATE_BATCH_NAME
+#undef TP_WALK_ISA
 #undef TP_WALK_CLEAR_KERNEL
-#undef TP_LANE_KERNEL
 #undef TP_WALK_AVX2
 #undef TP_WALK_TARGET
 #pragma GCC pop_options
@@ -159,49 +181,56 @@ void walk_general(const Store::Impl& s, const float q[3], uint32_t cell, uint32_
     return;
 }
 
-template <class Index, uint32_t D, bool Avx2>
-void walk(const Store::Impl& s, const float q[3], int32_t hint, Location& loc) {
+// The kernels of a store of dimension 0 to 2: the general walk alone.
+template <class Index, uint32_t D>
+void locate_low(const Store::Impl& s, const float q[3], int32_t hint, Location& loc) {
     const Cells<Index> cells(s);
-    uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(q);
-    uint32_t steps = 0;
-    if (D == 3) {
-#ifdef TETPROBE_X86_64
-        if (Avx2 ? walk_clear_avx2(cells, &cell, q, &steps, walk_step_cap(s), loc)
-                 : walk_clear_portable(cells, &cell, q, &steps, walk_step_cap(s), loc))
-            return;
-#else
-        if (walk_clear_portable(cells, &cell, q, &steps, walk_step_cap(s), loc)) return;
-#endif
-    }
-    walk_general<Index, D, Avx2>(s, q, cell, steps, loc);
+    walk_general<Index, D, false>(s, q, start_of(cells, q, hint), 0, loc);
 }
 
-template <class Index, uint32_t D, bool Avx2>
-void locate_batch(const Store::Impl& s, size_t count, const float (*q)[3], const int32_t* hints, Location* out) {
-    if (D == 3) {
-        const Cells<Index> cells(s);
-#ifdef TETPROBE_X86_64
-        if (Avx2) return locate_batch_avx2(cells, count, q, hints, out);
-#endif
-        return locate_batch_portable(cells, count, q, hints, out);
-    }
-    for (size_t i = 0; i < count; ++i) walk<Index, D, Avx2>(s, q[i], hints[i], out[i]);
+template <class Index, uint32_t D>
+void locate_batch_low(const Store::Impl& s, size_t count, const float (*q)[3], const int32_t* hints, Location* out) {
+    for (size_t i = 0; i < count; ++i) locate_low<Index, D>(s, q[i], hints[i], out[i]);
 }
 
-template <class Index, uint32_t D, bool Avx2>
-LocateKernel kernel_of(InstructionSet instruction_set) {
-    return {walk<Index, D, Avx2>, locate_batch<Index, D, Avx2>, instruction_set};
+template <class Index, uint32_t D>
+Status interpolate_low(const Store::Impl& s, const float q[3], int32_t* hint, float out_sh[27]) {
+    Location loc;
+    locate_low<Index, D>(s, q, *hint, loc);
+    *hint = loc.cell;
+    return answer_sh(s, loc, out_sh, nullptr);
+}
+
+template <class Index, uint32_t D>
+void interpolate_batch_low(const Store::Impl& s, size_t count, const float (*q)[3], int32_t* hints, float* const* out_sh,
+                           Status* status) {
+    for (size_t i = 0; i < count; ++i) status[i] = interpolate_low<Index, D>(s, q[i], &hints[i], out_sh[i]);
+}
+
+template <class Index, uint32_t D>
+LocateKernel kernel_low() {
+    return {locate_low<Index, D>, locate_batch_low<Index, D>, interpolate_low<Index, D>, interpolate_batch_low<Index, D>,
+            InstructionSet::portable};
+}
+
+template <class Index>
+LocateKernel kernel_3d(InstructionSet instruction_set) {
+#ifdef TETPROBE_X86_64
+    if (instruction_set == InstructionSet::avx2)
+        return {locate_avx2<Index>, locate_batch_avx2<Index>, interpolate_avx2<Index>, interpolate_batch_avx2<Index>,
+                instruction_set};
+#endif
+    return {locate_portable<Index>, locate_batch_portable<Index>, interpolate_portable<Index>,
+            interpolate_batch_portable<Index>, InstructionSet::portable};
 }
 
 template <class Index>
 LocateKernel kernel_for_dimension(uint32_t dimension, InstructionSet instruction_set) {
-    const bool avx2 = instruction_set == InstructionSet::avx2;
     switch (dimension) {
-        case 0: return kernel_of<Index, 0, false>(InstructionSet::portable);
-        case 1: return kernel_of<Index, 1, false>(InstructionSet::portable);
-        case 2: return kernel_of<Index, 2, false>(InstructionSet::portable);
-        default:
-            return avx2 ? kernel_of<Index, 3, true>(instruction_set) : kernel_of<Index, 3, false>(instruction_set);
+        case 0: return kernel_low<Index, 0>();
+        case 1: return kernel_low<Index, 1>();
+        case 2: return kernel_low<Index, 2>();
+        default: return kernel_3d<Index>(instruction_set);
     }
 }
 
@@ -212,8 +241,10 @@ InstructionSet detect_instruction_set() {
 }
 
 LocateKernel choose_locate_kernel(const Store::Impl& store, InstructionSet instruction_set) {
-    return store.index32 ? kernel_for_dimension<uint32_t>(store.dimension, instruction_set)
-                         : kernel_for_dimension<uint16_t>(store.dimension, instruction_set);
+    LocateKernel kernel = store.index32 ? kernel_for_dimension<uint32_t>(store.dimension, instruction_set)
+                                        : kernel_for_dimension<uint16_t>(store.dimension, instruction_set);
+    if (store.leak_offsets) kernel.interpolate = nullptr, kernel.interpolate_batch = nullptr;  // weighed between locate and blend
+    return kernel;
 }
 
 }  // namespace tetprobe

@@ -1,17 +1,20 @@
-// The lean walks over tetrahedra, included by walk.cpp once per instruction set (the AVX2 one inside
-// a region compiled for that target, so that its kernels inline): TP_WALK_CLEAR_NAME and
-// TP_LOCATE_BATCH_NAME are the functions' names, TP_WALK_CLEAR_KERNEL the orientation kernel of one
-// cell, TP_LANE_KERNEL that of four queries' cells at once (tetrahedron_orientations.h), and
-// TP_WALK_AVX2 the general walk's instruction set, TP_WALK_TARGET the functions' target attribute.
+// The lean walk over tetrahedra and the query kernels of 3-dimensional stores built on it, included by
+// walk.cpp once per instruction set (the AVX2 one inside a region compiled for that target, so that its
+// orientation kernel inlines): TP_WALK_ISA(name) names a function for that instruction set,
+// TP_WALK_CLEAR_KERNEL is the orientation kernel of one cell (tetrahedron_orientations.h), TP_WALK_AVX2
+// the general walk's instruction set and TP_WALK_TARGET the functions' target attribute.
 //
 // The common case, kept lean: the walk over tetrahedra while the filter decides. A cell whose four
 // orientations are all certainly positive holds the query (weights D / sum D); a cell with a
 // certainly negative one is left across the most negative (any facet the query is strictly beyond
-// is a valid visibility step). Returns true with loc filled when answered; false with *cell where
-// the general walk must take over (an uncertain sign, the hull, an outer cell, or the step cap).
+// is a valid visibility step). Returns true with *cell the cell that holds the query and weights its
+// weights (its record's vertices are the probes); false with *cell where the general walk must take
+// over (an uncertain sign, the hull, an outer cell, or the step cap). Inlined into each query kernel
+// (walk.cpp), so that nothing of it goes through memory on the way to the caller's answer.
 template <class Index>
-TP_WALK_TARGET __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Index>& cells, uint32_t* cell, const float q[3],
-                                                  uint32_t* steps, uint32_t step_cap, Location& loc) {
+TP_WALK_TARGET inline __attribute__((always_inline)) bool TP_WALK_ISA(walk_clear)(const Cells<Index>& cells, uint32_t* cell,
+                                                                               const float q[3], uint32_t* steps,
+                                                                               uint32_t step_cap, float weights[4]) {
     const uint32_t inner = cells.s.inner_cell_count;
     uint32_t c = *cell;
     if (c < inner) {
@@ -19,25 +22,26 @@ TP_WALK_TARGET __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Ind
         const CellRecord<Index>& r = cells.records[c];
         for (int k = 0; k < 4; ++k) __builtin_prefetch(cells.s.sh + size_t(r.vertices[k]) * cells.s.sh_stride);
     }
+    bool stepped = false;
     while (c < inner && *steps <= step_cap) {
         const CellRecord<Index>& r = cells.records[c];
+        // A walk that has stepped once often steps again: ask for the neighbours' records while the
+        // orientations compute, so that the next cell's is on its way when the exit is known. (Not in
+        // the start cell, which usually holds the query: there the four requests cost more than they save.)
+        if (stepped)
+            for (int k = 0; k < 4; ++k) {
+                const uint32_t n = r.neighbours[k];
+                __builtin_prefetch(&cells.records[n == none_index<Index>() ? c : n]);  // no pointer out of the array
+            }
+        stepped = true;
         const float* const P[4] = {cells.position(r.vertices[0]), cells.position(r.vertices[1]),
                                    cells.position(r.vertices[2]), cells.position(r.vertices[3])};
         const Orientations o = TP_WALK_CLEAR_KERNEL::of(P, q);
         const double* D = o.D;
-        if ((D[0] > o.bound) & (D[1] > o.bound) & (D[2] > o.bound) & (D[3] > o.bound)) {
+        if (TP_WALK_CLEAR_KERNEL::all_above_bound(o)) {
             const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
-            loc.status = Status::ok;
-            loc.cell = int32_t(c);
-            loc.kind = CellKind::inner;
-            loc.steps = *steps;
-            loc.fallback = false;
-            loc.searched = 0;
-            loc.t = 0;
-            for (int k = 0; k < 4; ++k) {
-                loc.probes[k] = r.vertices[k];
-                loc.weights[k] = float(D[k] * scale);
-            }
+            for (int k = 0; k < 4; ++k) weights[k] = float(D[k] * scale);
+            *cell = c;
             return true;
         }
         int exit = 0;
@@ -51,99 +55,81 @@ TP_WALK_TARGET __attribute__((noinline)) bool TP_WALK_CLEAR_NAME(const Cells<Ind
     return false;
 }
 
-// The batch walk: up to kLanes queries walk at once, each step computing the orientations of every
-// walking query's cell together (four queries' cells per kernel call, structure of arrays), so the
-// arithmetic runs side by side and the loads of different queries overlap. A query leaves its lane
-// when it is answered or needs the general walk (the same cell and step count walk_clear would hand
-// over), and the next query of the batch takes the lane. The same steps as walk_clear, with the same
-// operations on the same values: the same cells and weights, bit for bit.
+// The query kernels (locate_kernel.h) of a 3-dimensional store: the lean walk, the general walk where
+// it stops. The batch asks for each query's dependent loads ahead: its hint's cell record kRecordAhead
+// queries before it runs, then (the record has arrived) that cell's vertex positions kPositionsAhead
+// before; the lean walk asks for the SH of its start cell itself. The queries are independent, so the
+// CPU overlaps them out of order. (An 8-lane structure-of-arrays walk measured no faster: one cell's
+// four orientations already fill a vector, and a coherent query rarely takes a step.)
 template <class Index>
-TP_WALK_TARGET __attribute__((noinline)) void TP_LOCATE_BATCH_NAME(const Cells<Index>& cells, size_t count, const float (*q)[3],
-                                                    const int32_t* hints, Location* out) {
-    constexpr int kLanes = 8;
-    const Store::Impl& s = cells.s;
-    const uint32_t inner = s.inner_cell_count;
-    const uint32_t step_cap = walk_step_cap(s);
-    size_t next_query = 0;
-    uint32_t lane_query[kLanes], lane_cell[kLanes], lane_steps[kLanes];
-    // Starts the next query that begins in an inner cell in lane (the others walk on their own).
-    auto start = [&](int lane) {
-        while (next_query < count) {
-            const size_t i = next_query++;
-            const int32_t hint = hints[i];
-            const uint32_t cell = (hint >= 0 && uint32_t(hint) < s.cell_count) ? uint32_t(hint) : cells.start_cell(q[i]);
-            if (cell < inner) {
-                const CellRecord<Index>& r = cells.records[cell];
-                for (int k = 0; k < 4; ++k) __builtin_prefetch(s.sh + size_t(r.vertices[k]) * s.sh_stride);
-                lane_query[lane] = uint32_t(i);
-                lane_cell[lane] = cell;
-                lane_steps[lane] = 0;
-                return true;
-            }
-            walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], cell, 0, out[i]);
+TP_WALK_TARGET void TP_WALK_ISA(locate)(const Store::Impl& s, const float q[3], int32_t hint, Location& loc) {
+    const Cells<Index> cells(s);
+    uint32_t cell = start_of(cells, q, hint), steps = 0;
+    float weights[4];
+    if (TP_WALK_ISA(walk_clear)(cells, &cell, q, &steps, walk_step_cap(s), weights)) {
+        const CellRecord<Index>& r = cells.records[cell];
+        loc.status = Status::ok;
+        loc.cell = int32_t(cell);
+        loc.kind = CellKind::inner;
+        loc.steps = steps;
+        loc.fallback = false;
+        loc.searched = 0;
+        loc.t = 0;
+        for (int k = 0; k < 4; ++k) {
+            loc.probes[k] = r.vertices[k];
+            loc.weights[k] = weights[k];
         }
-        return false;
-    };
-    int lanes = 0;
-    while (lanes < kLanes && start(lanes)) ++lanes;
-    while (lanes > 0) {
-        LaneOrientations o[kLanes / 4];
-        for (int group = 0; 4 * group < lanes; ++group) {
-            const float* P[4][4];
-            const float* Q[4];
-            for (int l = 0; l < 4; ++l) {
-                const int lane = 4 * group + l < lanes ? 4 * group + l : 4 * group;  // idle lanes repeat a walking one
-                const CellRecord<Index>& r = cells.records[lane_cell[lane]];
-                for (int k = 0; k < 4; ++k) P[l][k] = cells.position(r.vertices[k]);
-                Q[l] = q[lane_query[lane]];
-            }
-            TP_LANE_KERNEL::of(P, Q, o[group]);
-        }
-        // Backwards, so that the last lane, moved into a finished one, has had its step.
-        for (int lane = lanes - 1; lane >= 0; --lane) {
-            const LaneOrientations& g = o[lane / 4];
-            const int l = lane % 4;
-            const double D[4] = {g.D[0][l], g.D[1][l], g.D[2][l], g.D[3][l]};
-            const double bound = g.bound[l];
-            const uint32_t c = lane_cell[lane];
-            const size_t i = lane_query[lane];
-            const CellRecord<Index>& r = cells.records[c];
-            bool finished = true;
-            if ((D[0] > bound) & (D[1] > bound) & (D[2] > bound) & (D[3] > bound)) {
-                const double scale = 1.0 / (D[0] + D[1] + D[2] + D[3]);
-                Location& loc = out[i];
-                loc.status = Status::ok;
-                loc.cell = int32_t(c);
-                loc.kind = CellKind::inner;
-                loc.steps = lane_steps[lane];
-                loc.fallback = false;
-                loc.searched = 0;
-                loc.t = 0;
-                for (int k = 0; k < 4; ++k) {
-                    loc.probes[k] = r.vertices[k];
-                    loc.weights[k] = float(D[k] * scale);
-                }
-            } else {
-                int exit = 0;
-                for (int k = 1; k < 4; ++k) exit = D[k] < D[exit] ? k : exit;
-                const uint32_t next = r.neighbours[exit];
-                if (!(D[exit] < -bound) || next == none_index<Index>()) {
-                    walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], c, lane_steps[lane], out[i]);
-                } else {
-                    const uint32_t steps = ++lane_steps[lane];
-                    lane_cell[lane] = next;
-                    if (next >= inner || steps > step_cap)
-                        walk_general<Index, 3, TP_WALK_AVX2>(s, q[i], next, steps, out[i]);
-                    else
-                        finished = false;
-                }
-            }
-            if (finished && !start(lane)) {
-                --lanes;
-                lane_query[lane] = lane_query[lanes];
-                lane_cell[lane] = lane_cell[lanes];
-                lane_steps[lane] = lane_steps[lanes];
-            }
-        }
+        return;
+    }
+    walk_general<Index, 3, TP_WALK_AVX2>(s, q, cell, steps, loc);
+}
+
+template <class Index>
+TP_WALK_TARGET void TP_WALK_ISA(locate_batch)(const Store::Impl& s, size_t count, const float (*q)[3], const int32_t* hints,
+                                              Location* out) {
+    const Cells<Index> cells(s);
+    prefetch_first(cells, count, hints);
+    for (size_t i = 0; i < count; ++i) {
+        prefetch_ahead(cells, i, count, hints);
+        TP_WALK_ISA(locate)<Index>(s, q[i], hints[i], out[i]);
+    }
+}
+
+// The lean walk's answer blended straight into out_sh (no Location: nothing of the answer goes through
+// memory on its way to the blend); the general walk's through the front end's answer_sh.
+template <class Index>
+TP_WALK_TARGET inline __attribute__((always_inline)) Status TP_WALK_ISA(interpolate_inline)(const Store::Impl& s,
+                                                                                          const float q[3],
+                                                                                          int32_t* hint, float out_sh[27]) {
+    const Cells<Index> cells(s);
+    uint32_t cell = start_of(cells, q, *hint), steps = 0;
+    float weights[4];
+    if (TP_WALK_ISA(walk_clear)(cells, &cell, q, &steps, walk_step_cap(s), weights)) {
+        const CellRecord<Index>& r = cells.records[cell];
+        const uint8_t* const records[4] = {s.sh + size_t(r.vertices[0]) * s.sh_stride, s.sh + size_t(r.vertices[1]) * s.sh_stride,
+                                           s.sh + size_t(r.vertices[2]) * s.sh_stride, s.sh + size_t(r.vertices[3]) * s.sh_stride};
+        *hint = int32_t(cell);
+        s.blend_sh(records, weights, out_sh);
+        return Status::ok;
+    }
+    Location loc;
+    walk_general<Index, 3, TP_WALK_AVX2>(s, q, cell, steps, loc);
+    *hint = loc.cell;
+    return answer_sh(s, loc, out_sh, nullptr);
+}
+
+template <class Index>
+TP_WALK_TARGET Status TP_WALK_ISA(interpolate)(const Store::Impl& s, const float q[3], int32_t* hint, float out_sh[27]) {
+    return TP_WALK_ISA(interpolate_inline)<Index>(s, q, hint, out_sh);
+}
+
+template <class Index>
+TP_WALK_TARGET void TP_WALK_ISA(interpolate_batch)(const Store::Impl& s, size_t count, const float (*q)[3], int32_t* hints,
+                                                   float* const* out_sh, Status* status) {
+    const Cells<Index> cells(s);
+    prefetch_first(cells, count, hints);
+    for (size_t i = 0; i < count; ++i) {
+        prefetch_ahead(cells, i, count, hints);
+        status[i] = TP_WALK_ISA(interpolate_inline)<Index>(s, q[i], &hints[i], out_sh[i]);
     }
 }

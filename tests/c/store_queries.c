@@ -251,5 +251,9 @@ void test_store_without_extrapolation(void) {
     CHECK((info.flags & TP_BUILD_NO_EXTRAPOLATION) != 0);
     EXPECT_OK(tp_store_interpolate(store, inside, NULL, out));
     EXPECT_STATUS(tp_store_interpolate(store, outside, NULL, out), TP_ERROR_OUTSIDE);
+    CHECK(strstr(tp_last_error(), "outside") != NULL);
+    /* The next successful query clears the message (the query paths clear it without allocating). */
+    EXPECT_OK(tp_store_interpolate(store, inside, NULL, out));
+    CHECK(strcmp(tp_last_error(), "") == 0);
     tp_store_release(store);
 }

@@ -106,9 +106,17 @@ Answers singles(const Store& store, const std::vector<float>& points, const std:
     for (size_t i = 0; i < n; ++i) {
         int32_t hint = chain ? chained : hints[i];
         const Location loc = store.locate(&points[3 * i], hint);
+        // With occlusion asked for, the query goes through Location and answer_sh; without, through the
+        // kernel's fused locate + blend (on a store without leak control): the same bits.
+        int32_t general_hint = hint;
+        float general[27], occlusion[4];
+        const Status general_status = store.interpolate(&points[3 * i], &general_hint, general, occlusion);
         a.status[i] = store.interpolate(&points[3 * i], &hint, &a.sh[27 * i]);
         REQUIRE(a.status[i] == loc.status);
         REQUIRE(hint == loc.cell);
+        REQUIRE(general_status == loc.status);
+        REQUIRE(general_hint == loc.cell);
+        REQUIRE(std::memcmp(general, &a.sh[27 * i], sizeof general) == 0);
         a.cells[i] = chained = hint;
         for (int k = 0; k < 4; ++k) {
             a.probes[4 * i + k] = loc.status == Status::ok ? loc.probes[k] : 0;

@@ -323,6 +323,14 @@ TEST_CASE("volume: strides are honoured byte for byte (a Light Probe Proxy Volum
         CHECK(std::memcmp(&interleaved[32 * p], &plain[27 * p], 108) == 0);
         for (int k = 27; k < 32; ++k) CHECK(interleaved[32 * p + k] == 123.0f);
     }
+    // L2 at an odd byte address (legal: no stride or buffer needs alignment) is copied, not blended in place:
+    // the same bytes.
+    std::vector<unsigned char> odd(108 * n + 1, 0xAB);
+    hint = -1;
+    REQUIRE(sample_volume(*store, g, VolumeFormat::sh_l2, packed(g, VolumeFormat::sh_l2), &hint, odd.data() + 1, failed) ==
+            Status::ok);
+    CHECK(odd[0] == 0xAB);
+    CHECK(std::memcmp(odd.data() + 1, plain.data(), 108 * n) == 0);
 }
 
 TEST_CASE("volume: bad grids are refused with a message naming the value", "[volume]") {
