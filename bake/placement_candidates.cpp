@@ -495,43 +495,4 @@ Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint
     return result;
 }
 
-std::vector<uint8_t> midpoints_pass(const Scene& scene, const CandidateRules& rules, const std::vector<float>& a,
-                                    const std::vector<float>& b, uint32_t threads, const Progress& progress) {
-    AxisTurn back;
-    if (turned_for_walking(scene, rules, &back)) {  // the band is judged where up is +y
-        const AxisTurn there = back.inverse();
-        std::vector<float> ta(a.size()), tb(b.size());
-        for (size_t i = 0; i + 2 < a.size(); i += 3) there.apply(&a[i], &ta[i]), there.apply(&b[i], &tb[i]);
-        return midpoints_pass(scene.meshes_turned(there), rules, ta, tb, threads, progress);
-    }
-    const size_t count = a.size() / 3;
-    std::vector<uint8_t> pass(count, 0);
-    if (count == 0) return pass;
-    double lo[3], hi[3];
-    scene_bounds(scene, lo, hi);
-    const double origin[3] = {centre(lo[0], hi[0]), centre(lo[1], hi[1]), centre(lo[2], hi[2])};
-    const Geometry geometry(scene, origin);
-    const double step = 1e-5 * std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
-    const bool walkable = rules.mode == PlacementMode::walkable;
-    // Walkable: the midpoint stands in the band of the nearest floor below it, as a column's points do.
-    auto in_band = [&](const float p[3]) {
-        for (double floor : geometry.floors(p[0], p[2], hi[1] + rules.walk_max_height + rules.spacing, step))
-            if (floor <= double(p[1])) {
-                const double height = double(p[1]) - floor;
-                return height >= std::max(rules.walk_min_height, rules.margin) && height <= rules.walk_max_height;
-            }
-        return false;
-    };
-    constexpr size_t kBlock = 256;
-    run_jobs((count + kBlock - 1) / kBlock, threads, [&](size_t job) {
-        for (size_t k = job * kBlock; k < std::min(count, (job + 1) * kBlock); ++k) {
-            float mid[3];
-            for (int i = 0; i < 3; ++i) mid[i] = float(0.5 * (double(a[3 * k + size_t(i)]) + double(b[3 * k + size_t(i)])));
-            pass[k] = geometry.accepts(mid, rules.margin) && geometry.clear(&a[3 * k], mid) && geometry.clear(mid, &b[3 * k]) &&
-                      (!walkable || in_band(mid));
-        }
-    }, progress, "refine");
-    return pass;
-}
-
 }  // namespace tetprobe

@@ -69,12 +69,6 @@ size_t candidate_bound(const Scene& scene, const CandidateRules& rules, uint32_t
 Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint64_t seed, uint32_t threads,
                            const Progress& progress);
 
-// Per pair of points (a[3k..], b[3k..], world): 1 when the point half way between them passes the rules'
-// free-space tests (outside geometry, at least the margin from every surface) and sees both ends, so
-// whatever reached the pair reaches it. Progress: stage "refine". Throws Error(Status::cancelled).
-std::vector<uint8_t> midpoints_pass(const Scene& scene, const CandidateRules& rules, const std::vector<float>& a,
-                                    const std::vector<float>& b, uint32_t threads, const Progress& progress);
-
 // Whether no surface lies closer than margin to the local point (margin 0: always).
 bool clear_of_surfaces(const RayCaster& caster, const float local[3], double margin);
 

@@ -1,14 +1,11 @@
 #include "bake/probe_placement.h"
 
-#include "bake/candidate_refinement.h"
 #include "bake/placement_signal.h"
-#include "bake/sampling.h"
 #include "core/error.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <map>
 #include <string>
 #include <thread>
 #include <unordered_map>
@@ -18,7 +15,7 @@ namespace tetprobe {
 namespace {
 
 // The part of the caller's progress each stage reports into.
-constexpr double kCandidatesEnd = 0.2, kBakeEnd = 0.5, kRefineEnd = 0.55, kRefineBakeEnd = 0.65;
+constexpr double kCandidatesEnd = 0.25, kBakeEnd = 0.6;
 // A tetrahedral set needs four probes.
 constexpr size_t kLeastCandidates = 4;
 
@@ -58,41 +55,10 @@ std::vector<uint8_t> clear_of_lights(const Scene& scene, const std::vector<float
     return clear;
 }
 
-// Adds candidates half way between neighbours whose light differs far beyond its noise
-// (bake/candidate_refinement.h), where they pass the rules, baked as the others with their own seed.
-void refine(const Scene& scene, const PlacementSettings& settings, SignalPoints* candidates, const Progress& progress) {
-    const size_t count = candidates->positions.size() / 3;
-    const ChangingPairs pairs = changing_pairs(candidates->positions, candidates->signal, settings.rules.spacing, size_t(kRefineShare * double(count)));
-    const double share = double(kRefineEnd - kBakeEnd) / double(kRefineBakeEnd - kBakeEnd);
-    const std::vector<uint8_t> pass = midpoints_pass(scene, settings.rules, pairs.a, pairs.b, settings.threads, progress.part(0, share));
-    std::map<std::tuple<float, float, float>, uint8_t> taken;
-    for (size_t i = 0; i < count; ++i)
-        taken.emplace(std::make_tuple(candidates->positions[3 * i], candidates->positions[3 * i + 1], candidates->positions[3 * i + 2]), 1);
-    std::vector<float> added;
-    for (size_t k = 0; k < pass.size(); ++k) {
-        if (!pass[k]) continue;
-        float mid[3];
-        for (int a = 0; a < 3; ++a) mid[a] = float(0.5 * (double(pairs.a[3 * k + size_t(a)]) + double(pairs.b[3 * k + size_t(a)])));
-        if (taken.emplace(std::make_tuple(mid[0], mid[1], mid[2]), 1).second) added.insert(added.end(), mid, mid + 3);
-    }
-    if (added.empty()) return;
-    BakeSettings bake;
-    bake.rays = settings.rays;
-    bake.bounces = settings.bounces;
-    bake.seed = mix64(settings.seed ^ 0x7ef1e5ull);  // samples of their own, not those of the first candidates
-    bake.threads = settings.threads;
-    const PointSignal signal = measure_signal(scene, added, bake, progress.part(share, 1.0));
-    candidates->refined_from = count;
-    candidates->positions.insert(candidates->positions.end(), added.begin(), added.end());
-    candidates->signal.value.insert(candidates->signal.value.end(), signal.value.begin(), signal.value.end());
-    candidates->signal.noise.insert(candidates->signal.noise.end(), signal.noise.begin(), signal.noise.end());
-}
-
 }  // namespace
 
 size_t placement_bound(const Scene& scene, const PlacementSettings& settings) {
-    const size_t coarse = candidate_bound(scene, settings.rules, settings.threads);
-    return coarse + size_t(kRefineShare * double(coarse));  // refinement adds at most kRefineShare per candidate
+    return candidate_bound(scene, settings.rules, settings.threads);
 }
 
 Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
@@ -124,6 +90,12 @@ Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
     Placement placement;
     placement.candidates = count;
     placement.unreached = found.unreached;
+    if (settings.target_count == 0 && settings.error_bound == 0) {
+        placement.positions = std::move(found.positions);
+        progress.report(1.0, "done");
+        return placement;
+    }
+
     // One bake of candidates and validation points together.
     SignalPoints candidates, validation;
     candidates.positions = std::move(found.positions);
@@ -147,13 +119,6 @@ Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
     split(candidates, 0, count);
     split(validation, count, placement.validation_points);
     signal = PointSignal();
-    refine(scene, settings, &candidates, progress.part(kBakeEnd, kRefineBakeEnd));
-    placement.candidates = candidates.positions.size() / 3;
-    if (settings.target_count == 0 && settings.error_bound == 0) {
-        placement.positions = std::move(candidates.positions);
-        progress.report(1.0, "done");
-        return placement;
-    }
     candidates.counted = clear_of_lights(scene, candidates.positions, settings.light_clearance);
     validation.counted = clear_of_lights(scene, validation.positions, settings.light_clearance);
     // Lights everywhere: the clearance would leave nothing to measure, so everything counts.
@@ -167,7 +132,7 @@ Placement place_probes(const Scene& scene, const PlacementSettings& settings) {
     select.target_count = settings.target_count;
     select.error_bound = settings.error_bound;
     select.threads = settings.threads ? settings.threads : std::max(1u, std::thread::hardware_concurrency());
-    const Selection chosen = select_probes(candidates, validation, select, progress.part(kRefineBakeEnd, 1.0));
+    const Selection chosen = select_probes(candidates, validation, select, progress.part(kBakeEnd, 1.0));
     placement.positions.reserve(3 * chosen.order.size());
     for (uint32_t i : chosen.order)
         placement.positions.insert(placement.positions.end(), &candidates.positions[3 * size_t(i)],

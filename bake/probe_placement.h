@@ -28,7 +28,7 @@ struct PlacementSettings {
     // when a target needs more probes than the others (the light's inverse-square peak there is no
     // interpolation's to follow; the real-level benchmark leaves such points out alike).
     double light_clearance = kDefaultPlacementLightClearance;
-    Progress progress;          // stages "candidates", "bake", "refine", "bake", "select", "done"
+    Progress progress;          // stages "candidates", "bake", "select", "done"
 };
 
 struct Placement {
@@ -43,9 +43,7 @@ struct Placement {
 // The upper bound of the probes place_probes returns (see candidate_bound); throws as candidate_bound.
 size_t placement_bound(const Scene& scene, const PlacementSettings& settings);
 
-// Places probes in the scene. Candidates: the lattice's (bake/placement_candidates.h), then after their
-// bake the refined ones (bake/candidate_refinement.h), baked too. Without a target and a bound every
-// candidate, coarse then refined, is returned (the pool a placement with the same settings chooses from).
+// Places probes in the scene. Without a target and a bound every candidate is returned, unbaked.
 // Throws Error: invalid_argument (bad settings, a target above the candidates, too many candidates),
 // scene (no mesh, nothing with an inside, no candidate a playable seed sees), degenerate (fewer than
 // four candidates pass the rules), cancelled (the progress callback).

@@ -25,9 +25,6 @@ namespace {
 constexpr uint32_t kStartProbes = 16;
 constexpr double kGrowth = 0.25;
 constexpr size_t kTrialsPerCell = 8;
-// Refined candidates join the choice once the set holds one probe per this many coarse candidates
-// (probes about two spacings apart, the cube root of 8; see SignalPoints::refined_from).
-constexpr size_t kCoarsePerProbeBeforeRefined = 8;
 
 // A cell by its vertices (candidate indices, sorted; an outer cell's marker kept): the same key in two
 // rounds is the same cell.
@@ -77,7 +74,7 @@ public:
     // Farthest points among the counted candidates, from the one nearest their centroid.
     std::vector<uint32_t> start(size_t n) const {
         std::vector<uint32_t> pool;
-        for (uint32_t i = 0; i < count_ && i < c_.refined_from; ++i)
+        for (uint32_t i = 0; i < count_; ++i)
             if (c_.counted[i]) pool.push_back(i);
         std::vector<uint32_t> chosen;
         if (pool.empty() || n == 0) return chosen;
@@ -181,7 +178,7 @@ public:
         for (size_t i = 0; i < count_; ++i) {
             for (int a = 0; a < 3; ++a) s->local[3 * i + size_t(a)] = float(double(c_.positions[3 * i + size_t(a)]) - origin[a]);
             if (in_set[i]) continue;
-            s->active[i] = c_.counted[i] && s->cell[i] >= 0 && (i < c_.refined_from || kCoarsePerProbeBeforeRefined * chosen.size() >= c_.refined_from);
+            s->active[i] = c_.counted[i] && s->cell[i] >= 0;
             double* r = &s->residual[kSignalSize * i];
             double noise = c_.signal.noise[i];
             for (int k = 0; k < kSignalSize; ++k) r[k] = c_.signal.value[kSignalSize * i + size_t(k)];

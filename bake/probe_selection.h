@@ -31,10 +31,6 @@ struct SignalPoints {
     std::vector<float> positions;  // 3 per point, world
     PointSignal signal;
     std::vector<uint8_t> counted;  // per point: counts in the error
-    // Candidates from this index on are refined ones (bake/candidate_refinement.h): they join the choice
-    // once the set holds an eighth of the coarse ones, when its probes stand about two spacings apart and
-    // a half spacing can matter; before that a midpoint is a local feature a coarse choice covers.
-    size_t refined_from = SIZE_MAX;
 };
 
 struct SelectionSettings {

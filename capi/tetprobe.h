@@ -737,14 +737,13 @@ typedef struct tp_placement_options {
         volume, never chosen), the RMS over points and the 6 axis normals of |interpolated - baked|
         luminance irradiance, relative to the mean baked there, with the low-ray bake's noise taken out
         (an estimate of the error against a noise-free bake). Without a target and a bound nothing is
-        chosen: every candidate is returned: the lattice's, then those placement adds half way between
-        neighbours whose baked light differs by far more than its noise (so they are baked to be found). */
+        chosen: every candidate is returned, unbaked. */
     float error_bound;
     uint32_t rays;               /* rays per candidate of the low-sample bake (default 128, at least 2: two halves) */
     uint32_t bounces;            /* as tp_bake_options (default 2) */
     uint64_t seed;               /* the same seed gives the same bytes whatever the thread count */
     uint32_t threads;            /* 0 = all cores */
-    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "refine", "bake", "select", "done" */
+    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "select", "done" */
     void* progress_user;
     /** Points closer than this to a point or spot light do not count in the error and are chosen last
         (world units, default 1; 0 = every point counts): the light's inverse-square peak there is no
@@ -757,8 +756,7 @@ TP_API tp_status tp_placement_options_init(tp_placement_options* options);
 
 /** Upper bound of the probes (and of the error curve's points) tp_place_probes returns for these
     options: the points the inside and margin tests are applied to (the lattice's size; in the walkable
-    mode the columns' floors times the band's layers, found with a few rays per column), and a quarter
-    more for the candidates refinement adds half way between neighbours whose light differs. Fails as
+    mode the columns' floors times the band's layers, found with a few rays per column). Fails as
     tp_place_probes does on bad options (spacing, margin larger than the scene, too many points). */
 TP_API tp_status tp_place_probes_bound(const tp_scene* scene, const tp_placement_options* options, size_t* out_bound);
 

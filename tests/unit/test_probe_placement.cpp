@@ -7,7 +7,6 @@
 
 #include "placement_scenes.h"
 
-#include "bake/candidate_refinement.h"
 #include "bake/lighting_bake.h"
 #include "bake/placement_signal.h"
 #include "bake/probe_placement.h"
@@ -414,13 +413,11 @@ TEST_CASE("placement: beats random subsamples of its candidates at a sharp shado
     const std::vector<float> reference = bake_lighting(scene, points, reference_bake);
     const double smart = measured_error(scene, placed.positions, points, reference);
 
-    PlacementSettings pool = settings;  // the candidates placement chose from, refined ones included
-    pool.target_count = 0;
-    const std::vector<float> all = place_probes(scene, pool).positions;
-    REQUIRE(all.size() / 3 == placed.candidates);
+    const Candidates all = find_candidates(scene, settings.rules, settings.seed, 2, Progress{});
+    REQUIRE(all.positions.size() / 3 == placed.candidates);
     double random = 0;
     for (uint32_t seed : {1u, 2u, 3u})
-        random += measured_error(scene, pick(all, random_indices(placed.candidates, 60, seed)), points, reference) / 3;
+        random += measured_error(scene, pick(all.positions, random_indices(placed.candidates, 60, seed)), points, reference) / 3;
     const double reported = placed.curve.back().error;
     WARN("60 of " << placed.candidates << " candidates: placed " << smart << " (reported " << reported
                   << "), random subsamples " << random);
@@ -496,10 +493,9 @@ TEST_CASE("placement: a 250 x 100 x 250 m level places at half a metre (memory g
     settings.target_count = 300;
     const Placement placed = place_probes(scene, settings);
     REQUIRE(placed.positions.size() == 3 * 300);
-    // Eight columns across each walkway, the band 0.1 to 2 in five layers; the crossing counted once;
-    // refinement adds at most a quarter.
+    // Eight columns across each walkway, the band 0.1 to 2 in five layers; the crossing counted once.
     CHECK(placed.candidates >= 2 * 8 * 490 * 5);
-    CHECK(double(placed.candidates) <= (1 + kRefineShare) * 2 * 8 * 500 * 5);
+    CHECK(placed.candidates <= 2 * 8 * 500 * 5);
     for (size_t i = 0; i < 300; ++i) {
         const float* p = &placed.positions[3 * i];
         const bool first = p[2] > 100 && p[2] < 104 && p[1] > 0 && p[1] <= 2;
@@ -508,43 +504,9 @@ TEST_CASE("placement: a 250 x 100 x 250 m level places at half a metre (memory g
     }
 }
 
-TEST_CASE("placement: refined candidates stand half way between two neighbours, pass the rules, and are the pool",
-          "[placement]") {
-    const Scene scene = lit_room();
-    PlacementSettings settings = room_settings();
-    const Placement pool = place_probes(scene, settings);
-    const Candidates coarse = find_candidates(scene, settings.rules, settings.seed, 2, Progress{});
-    const size_t n = coarse.positions.size() / 3;
-    REQUIRE(pool.candidates == pool.positions.size() / 3);
-    REQUIRE(pool.positions.size() > coarse.positions.size());  // the lamp's falloff changes far beyond the noise
-    CHECK(double(pool.candidates) <= (1 + kRefineShare) * double(n));
-    CHECK(std::equal(coarse.positions.begin(), coarse.positions.end(), pool.positions.begin()));
-    const std::multiset<Point> listed = as_set(pool.positions);
-    CHECK(std::set<Point>(listed.begin(), listed.end()).size() == pool.candidates);  // no point twice
-    for (size_t k = n; k < pool.candidates; ++k) {
-        const float* m = &pool.positions[3 * k];
-        bool between = false;
-        for (size_t i = 0; i < n && !between; ++i)
-            for (size_t j = i + 1; j < n && !between; ++j) {
-                const float* a = &coarse.positions[3 * i];
-                const float* b = &coarse.positions[3 * j];
-                double d2 = 0;
-                for (int c = 0; c < 3; ++c) d2 += double(a[c] - b[c]) * double(a[c] - b[c]);
-                between = d2 <= 1.5 * 1.5 * settings.rules.spacing * settings.rules.spacing;
-                for (int c = 0; c < 3; ++c) between = between && m[c] == float(0.5 * (double(a[c]) + double(b[c])));
-            }
-        CHECK(between);
-        CHECK(!in_solid(m));
-        CHECK(distance_to_scene(scene, m) >= settings.rules.margin);
-    }
-    // The placement with a target chooses from this pool.
-    settings.target_count = 40;
-    for (const Point& p : as_set(place_probes(scene, settings).positions)) CHECK(listed.count(p) == 1);
-}
-
 TEST_CASE("placement: cancelling in any stage stops with Status::cancelled", "[placement]") {
     const Scene scene = lit_room();
-    for (const char* stage : {"candidates", "bake", "refine", "select"}) {
+    for (const char* stage : {"candidates", "bake", "select"}) {
         PlacementSettings settings = room_settings();
         settings.target_count = 40;
         struct Cancel {
