@@ -38,7 +38,8 @@ bool light_arrival(const Light& light, const double local_position[3], const dou
         if (!(length > 0.0) || length > light.range) return false;
         for (int a = 0; a < 3; ++a) to_light[a] = d[a] / length;
         *distance = length;
-        scale /= length * length;
+        const double falloff = std::max(length, light.near_distance);  // bounded near the light
+        scale /= falloff * falloff;
         if (light.type == LightType::spot) {
             double c = -dot3(to_light, light.direction.data());  // cosine from the spot's axis
             if (c <= light.cos_outer) return false;

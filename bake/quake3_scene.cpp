@@ -23,6 +23,7 @@ void add_quake3_level(Scene& scene, const Quake3Level& level) {
         for (int k = 0; k < 3; ++k) light.color[k] = q.color[k], light.position[k] = float(q.position[k]);
         // Irradiance I / d^2 falls to pi / 255 at d = sqrt(255 I / pi).
         light.range = float(std::sqrt(255.0 * light.intensity / 3.14159265358979323846));
+        light.near_distance = float(kQuake3LightNearDistance);
         if (q.spot) {
             const double outer = std::acos(q.spot_cos_outer);
             for (int k = 0; k < 3; ++k) light.direction[k] = float(q.spot_direction[k]);

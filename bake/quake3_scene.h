@@ -9,7 +9,9 @@
 //   texture brightness); reading full brightness as the radiance of a white Lambertian surface
 //   lit by irradiance pi gives I = L * 7500 * pi / (255 * 32^2) W/sr in metres. A light ends where
 //   its irradiance falls to pi / 255 (one lightmap step), q3map's light envelope. Linear-falloff
-//   lights (spawnflags 1) are given the same inverse-square falloff. Spot lights: the cone's half
+//   lights (spawnflags 1) are given the same inverse-square falloff. Closer than kQuake3LightNearDistance
+//   (16 units) the falloff is held at its value there, as q3map2 clamps the distance for both lightmaps
+//   and the light grid so that surfaces next to a light get no hot spot. Spot lights: the cone's half
 //   angle is atan(radius / distance to the target) (radius 64 units by default), full intensity
 //   inside 0.8 of that angle.
 // - Sun: a directional light of irradiance kQuake3SunIrradiance and colour kQuake3SunColor, from
@@ -32,6 +34,7 @@ constexpr float kQuake3SunColor[3] = {1.0f, 0.95f, 0.85f};
 constexpr double kQuake3SunElevationDegrees = 55.0, kQuake3SunAzimuthDegrees = 30.0;
 constexpr float kQuake3SkyRadiance[3] = {0.25f, 0.32f, 0.45f};
 constexpr double kQuake3SpotInnerFraction = 0.8;
+constexpr double kQuake3LightNearDistance = 16.0 / kQuake3UnitsPerMetre;
 
 // Adds the level's mesh, lights, sun and sky to the scene (see above).
 void add_quake3_level(Scene& scene, const Quake3Level& level);

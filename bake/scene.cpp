@@ -163,6 +163,9 @@ uint32_t Scene::add_light(const LightDescription& in, const std::string& label) 
         if (std::isnan(in.range) || !(in.range > 0))
             scene_error(where, "range " + std::to_string(in.range) + " must be positive (INFINITY = unlimited)");
         light.range = in.range;
+        if (!std::isfinite(in.near_distance) || in.near_distance < 0)
+            scene_error(where, "near distance " + std::to_string(in.near_distance) + " must be zero or positive and finite");
+        light.near_distance = in.near_distance;
     }
     if (light.type == LightType::spot) {
         float inner = in.inner_angle, outer = in.outer_angle;

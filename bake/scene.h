@@ -58,6 +58,9 @@ struct LightDescription {
     // Directional, spot: the direction light travels, of any non-zero length.
     std::array<float, 3> direction{{kDefaultLightDirection[0], kDefaultLightDirection[1], kDefaultLightDirection[2]}};
     float range = kDefaultLightRange;            // point, spot: no light beyond (infinity = unlimited)
+    // Point, spot: closer than this the irradiance stays at its value at this distance instead of growing
+    // without bound (0: pure inverse square). A light compiler's near-field clamp, e.g. q3map2's 16 units.
+    float near_distance = 0;
     float inner_angle = kDefaultSpotInnerAngle;  // spot: full cone angle in degrees with full intensity
     float outer_angle = kDefaultSpotOuterAngle;  // spot: full cone angle in degrees beyond which there is no light
 };
@@ -73,6 +76,7 @@ struct Light {
     std::array<double, 3> position{{0, 0, 0}};  // point, spot
     std::array<double, 3> direction{{0, -1, 0}};// directional, spot: unit, the direction light travels
     double range = 0;                           // point, spot: no light beyond (infinity = unlimited)
+    double near_distance = 0;                   // point, spot: inverse square evaluated at no less than this
     double cos_inner = 1, cos_outer = 0;        // spot: cosines of the half angles of the cones
 
     bool positional() const { return type != LightType::directional; }

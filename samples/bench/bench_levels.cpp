@@ -152,7 +152,7 @@ const char* const kImportText =
     "Quake 3 levels (IBSP 46) from Debian's openarena-081-maps, imported by bake/quake3_bsp: 32 units a metre, y up; "
     "polygons, meshes and Bezier patches (8 x 8 quads per 3 x 3 piece) of the world and brush models, one-sided, "
     "albedo 0.5; sky, nodraw, liquid, fog and nonsolid faces left out; light entities as inverse-square point (or spot) "
-    "lights of q3map's scale, plus a sun (irradiance 3) and a sky (radiance 0.25, 0.32, 0.45): bake/quake3_scene.h.";
+    "lights of q3map's scale, held at their value at 16 units (0.5 m) closer in as q3map2 does, plus a sun (irradiance 3) and a sky (radiance 0.25, 0.32, 0.45): bake/quake3_scene.h.";
 
 std::string level_path(const LevelArgs& a, const std::string& level) {
     if (level.size() > 4 && level.compare(level.size() - 4, 4, ".bsp") == 0) return level;

@@ -38,7 +38,7 @@ std::vector<float> bake(const tp_scene* scene, const float* positions, size_t co
 }
 
 // Bumped whenever what the cache holds changes meaning.
-constexpr int kCacheVersion = 2;
+constexpr int kCacheVersion = 3;
 
 }  // namespace
 

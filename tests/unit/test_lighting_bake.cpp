@@ -145,6 +145,50 @@ TEST_CASE("bake: a point light follows the inverse square law", "[bake]") {
     }
 }
 
+TEST_CASE("bake: a point light's near distance holds its irradiance closer in, and only there", "[bake]") {
+    // Probes 1, 1.5, 2 and 4 units from the light; near distance 2: the first two get the irradiance
+    // at 2, the others the plain inverse square. Bounced light through a floor stays bounded as well.
+    Scene scene;
+    const float at[3] = {0, 10, 0};
+    LightDescription light = point(at, 100.0f);
+    light.near_distance = 2.0f;
+    scene.add_light(light);
+    std::vector<float> sh = bake_lighting(scene, {0, 9, 0, 0, 8.5f, 0, 0, 8, 0, 0, 6, 0}, quick());
+    const double up[3] = {0, 1, 0};
+    const double distances[4] = {2, 2, 2, 4};
+    for (int p = 0; p < 4; ++p) {
+        const double e = 100.0 / (distances[p] * distances[p]);
+        const double rgb[3] = {e, e, e};
+        std::vector<double> expected = delta_sh(up, rgb);
+        for (int i = 0; i < 27; ++i) CHECK(sh[27 * p + i] == Approx(expected[i]).margin(1e-5 * e));
+    }
+    // Realtime lights (only their bounce is baked) 0.1 above a floor, a probe 0.5 above the floor: the
+    // light the floor reflects comes from at most the near distance's irradiance, where the bare
+    // inverse square puts 100x that under the light.
+    LightDescription bare = point(at, 100.0f);
+    bare.mode = LightMode::realtime;
+    light.mode = LightMode::realtime;
+    Scene clamped_floor, bare_floor;
+    clamped_floor.add_light(light);
+    bare_floor.add_light(bare);
+    add_floor(clamped_floor, 9.9f, 0.5f, material(0.5f));
+    add_floor(bare_floor, 9.9f, 0.5f, material(0.5f));
+    const std::vector<float> clamped = bake_lighting(clamped_floor, {0, 10.4f, 0}, quick(1024, 1));
+    const std::vector<float> unclamped = bake_lighting(bare_floor, {0, 10.4f, 0}, quick(1024, 1));
+    CHECK(clamped[0] > 0.0f);
+    CHECK(clamped[0] < 0.25f * unclamped[0]);
+}
+
+TEST_CASE("bake: a negative or infinite near distance is refused", "[bake]") {
+    Scene scene;
+    const float at[3] = {0, 0, 0};
+    for (float bad : {-1.0f, INFINITY, NAN}) {
+        LightDescription light = point(at, 1.0f);
+        light.near_distance = bad;
+        CHECK_THROWS_AS(scene.add_light(light), Error);
+    }
+}
+
 TEST_CASE("bake: spot cones and ranges cut the light off", "[bake]") {
     Scene scene;
     LightDescription spot;

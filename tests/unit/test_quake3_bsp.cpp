@@ -255,6 +255,9 @@ TEST_CASE("quake3: the scene has the level's mesh, its lights with the stated in
     CHECK(red.color[1] == 0.5f);
     // The light ends where its irradiance falls to pi / 255 (q3map's envelope: L * 7500 / d^2 = 1).
     CHECK(red.range == Approx(std::sqrt(200.0 * 7500.0) / 32.0).epsilon(1e-5));
+    // Closer than 16 units (half a metre) q3map2 holds the distance at 16: no hot spot next to a light.
+    CHECK(red.near_distance == Approx(0.5).epsilon(1e-6));
+    CHECK(scene.lights()[1].near_distance == Approx(0.5).epsilon(1e-6));
     CHECK(scene.lights()[2].type == LightType::directional);
     CHECK(scene.lights()[2].direction[1] < 0);  // the sun shines down
     CHECK(scene.sky().kind == SkyKind::color);
