@@ -233,12 +233,41 @@ private:
         boundary_.clear();
         tets_[seed].mark = stamp_ << 1;
         cavity_.push_back(seed);
+        // A cavity cell's four neighbours are filtered together (filter4), decided ones included: the
+        // tests overlap instead of waiting on each other. A cell at infinity reads the zero point
+        // after the last (its filter is ignored), and a filter that cannot tell, or a cell decided
+        // meanwhile, goes through in_conflict as before, so every decision stays exact.
+        const float* const e = padded(p);
         for (size_t i = 0; i < cavity_.size(); ++i) {
             const uint32_t c = cavity_[i];
+            uint32_t across[4];
+            const float* corners[4][4];
             TP_UNROLL_FULLY
             for (uint32_t k = 0; k < 4; ++k) {
-                const uint32_t across = tets_[c].n[k];
-                if (!in_conflict(across >> 2, p)) boundary_.push_back(Boundary{c, k, across});
+                across[k] = tets_[c].n[k];
+                const Tet& u = tets_[across[k] >> 2];
+                corners[k][0] = padded(u.v[0]);
+                corners[k][1] = padded(u.v[1]);
+                corners[k][2] = padded(u.v[2]);
+                corners[k][3] = padded(u.v[3] == kInfinite ? count_ : u.v[3]);
+            }
+            unsigned inside, outside;
+            TP_SPHERE_KERNEL::filter4(corners, e, &inside, &outside);
+            TP_UNROLL_FULLY
+            for (uint32_t k = 0; k < 4; ++k) {
+                const uint32_t t = across[k] >> 2;
+                Tet& u = tets_[t];
+                bool conflict;
+                if ((u.mark >> 1) == stamp_) {
+                    conflict = (u.mark & 1u) == 0;
+                } else if (((inside | outside) >> k & 1u) && u.v[3] != kInfinite) {
+                    conflict = (inside >> k) & 1u;
+                    u.mark = stamp_ << 1 | (conflict ? 0u : 1u);
+                    if (conflict) cavity_.push_back(t);
+                } else {
+                    conflict = classify(t, p);
+                }
+                if (!conflict) boundary_.push_back(Boundary{c, k, across[k]});
             }
         }
 
