@@ -107,9 +107,9 @@ void fill_grid(StoreData& data, Walk&& walk) {
 }
 
 #ifdef TETPROBE_X86_64
-// The AVX2 fill compiled for that target as a whole, so that the orientation kernel inlines into the
-// walk (a call per step otherwise).
-__attribute__((target("avx2"))) void fill_grid_avx2(StoreData& data, const float* padded) {
+// The AVX2 fill compiled for that target and flattened: the walk and its orientation kernel are
+// inlined into it (GCC does not inline the target("avx2") kernel into the generic walk template).
+__attribute__((target("avx2"), flatten)) void fill_grid_avx2(StoreData& data, const float* padded) {
     fill_grid(data, [&](const float p[3], uint32_t cell) { return walk_inner_cells_3d<Avx2Orientations>(data, padded, p, cell); });
 }
 #endif
