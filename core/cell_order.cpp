@@ -12,14 +12,20 @@ namespace tetprobe {
 
 namespace {
 
+// Bit i of x to bit 3 i, for x below 2^7.
+struct SpreadTable {
+    uint32_t bits[128];
+    constexpr SpreadTable() : bits() {
+        for (uint32_t x = 0; x < 128; ++x)
+            for (uint32_t i = 0; i < 7; ++i) bits[x] |= ((x >> i) & 1u) << (3 * i);
+    }
+};
+constexpr SpreadTable kSpread;
+
+// Bit i of the low 21 bits of x to bit 3 i, seven bits at a time.
 uint64_t spread_bits(uint64_t x) {
-    x &= 0x1FFFFFull;
-    x = (x | (x << 32)) & 0x001F00000000FFFFull;
-    x = (x | (x << 16)) & 0x001F0000FF0000FFull;
-    x = (x | (x << 8)) & 0x100F00F00F00F00Full;
-    x = (x | (x << 4)) & 0x10C30C30C30C30C3ull;
-    x = (x | (x << 2)) & 0x1249249249249249ull;
-    return x;
+    return uint64_t(kSpread.bits[x & 0x7F]) | uint64_t(kSpread.bits[(x >> 7) & 0x7F]) << 21 |
+           uint64_t(kSpread.bits[(x >> 14) & 0x7F]) << 42;
 }
 
 // Stable LSD radix sort of indices by a 32-bit key (three 11-bit passes, no comparisons).
@@ -149,9 +155,11 @@ void order_cells_for_locality(StoreData& data) {
     std::vector<uint32_t> new_of_old(cells);
     for (uint32_t n = 0; n < cells; ++n) new_of_old[old_of_new[n]] = n;
 
+    // Scattered in the old order: the reads stay sequential and the scattered writes do not stall
+    // (a gather in the new order waited on a cache miss per cell: half of this function's time).
     std::vector<uint32_t> vertices(data.cell_vertices.size()), neighbours(data.cell_neighbours.size());
-    for (uint32_t n = 0; n < cells; ++n) {
-        const uint32_t o = old_of_new[n];
+    for (uint32_t o = 0; o < cells; ++o) {
+        const uint32_t n = new_of_old[o];
         for (size_t k = 0; k < 4; ++k) {
             vertices[size_t(n) * 4 + k] = data.cell_vertices[size_t(o) * 4 + k];
             const uint32_t link = data.cell_neighbours[size_t(o) * 4 + k];

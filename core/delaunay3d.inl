@@ -190,8 +190,18 @@ private:
             conflict = beyond_hull_facet(t, p);
         }
         tets_[t].mark = stamp_ << 1 | (conflict ? 0u : 1u);
-        if (conflict) cavity_.push_back(t);
+        if (conflict) {
+            room_for_one_more(cavity_, cavity_size_);
+            cavity_[cavity_size_++] = t;
+        }
         return conflict;
+    }
+
+    // The cavity and boundary lists are arrays with a count, so that the search appends to them
+    // without a branch on the decision (written always, counted when it applies).
+    template <class T>
+    static void room_for_one_more(std::vector<T>& list, size_t size) {
+        if (__builtin_expect(size == list.size(), 0)) list.resize(std::max<size_t>(64, 2 * list.size()));
     }
 
     // The rare cases, out of the hot path: the exact in-sphere sign with the tie rule, and the test
@@ -229,16 +239,51 @@ private:
         // outside the hull, so it is in conflict without any tie), searched breadth first with the
         // cavity list as the queue; the facets to cells not in conflict bound it.
         ++stamp_;
-        cavity_.clear();
-        boundary_.clear();
+        cavity_size_ = boundary_size_ = 0;
         tets_[seed].mark = stamp_ << 1;
-        cavity_.push_back(seed);
-        for (size_t i = 0; i < cavity_.size(); ++i) {
+        room_for_one_more(cavity_, 0);
+        cavity_[cavity_size_++] = seed;
+        // A cavity cell's four neighbours are filtered together (filter4), decided ones included: the
+        // tests overlap instead of waiting on each other. A cell at infinity reads the zero point
+        // after the last (its filter is ignored), and a filter that cannot tell, or a cell decided
+        // meanwhile, goes through in_conflict as before, so every decision stays exact. Whether a
+        // neighbour is in conflict is a coin toss, so its cell is queued and its facet filed without
+        // a branch on it.
+        const float* const e = padded(p);
+        for (size_t i = 0; i < cavity_size_; ++i) {
             const uint32_t c = cavity_[i];
+            uint32_t across[4];
+            const float* corners[4][4];
             TP_UNROLL_FULLY
             for (uint32_t k = 0; k < 4; ++k) {
-                const uint32_t across = tets_[c].n[k];
-                if (!in_conflict(across >> 2, p)) boundary_.push_back(Boundary{c, k, across});
+                across[k] = tets_[c].n[k];
+                const Tet& u = tets_[across[k] >> 2];
+                corners[k][0] = padded(u.v[0]);
+                corners[k][1] = padded(u.v[1]);
+                corners[k][2] = padded(u.v[2]);
+                corners[k][3] = padded(u.v[3] == kInfinite ? count_ : u.v[3]);
+            }
+            unsigned inside, outside;
+            TP_SPHERE_KERNEL::filter4(corners, e, &inside, &outside);
+            TP_UNROLL_FULLY
+            for (uint32_t k = 0; k < 4; ++k) {
+                const uint32_t t = across[k] >> 2;
+                Tet& u = tets_[t];
+                const uint32_t mark = u.mark, marked = uint32_t((mark >> 1) == stamp_);
+                const uint32_t filtered = ((inside | outside) >> k & 1u) & uint32_t(u.v[3] != kInfinite);
+                uint32_t conflict;
+                if (__builtin_expect(marked | filtered, 1)) {
+                    conflict = marked ? (mark & 1u) ^ 1u : (inside >> k) & 1u;
+                    u.mark = stamp_ << 1 | (conflict ^ 1u);  // unchanged when already marked
+                    room_for_one_more(cavity_, cavity_size_);
+                    cavity_[cavity_size_] = t;
+                    cavity_size_ += conflict & (marked ^ 1u);
+                } else {
+                    conflict = classify(t, p);
+                }
+                room_for_one_more(boundary_, boundary_size_);
+                boundary_[boundary_size_] = Boundary{c, k, across[k]};
+                boundary_size_ += conflict ^ 1u;
             }
         }
 
@@ -250,11 +295,12 @@ private:
         // cavity with very many vertices, as a cospherical set can make). The cavity's cells are
         // freed last, so new cells reuse the previous insertion's.
         // A closed triangulated sphere with F facets has F / 2 + 2 vertices.
-        const bool direct = boundary_.size() / 2 + 2 <= kDirectVertices;
-        if (!direct) edges_.start(boundary_.size() * 3);
-        if (filed_.size() < boundary_.size() * 3) filed_.resize(boundary_.size() * 3);
+        const bool direct = boundary_size_ / 2 + 2 <= kDirectVertices;
+        if (!direct) edges_.start(boundary_size_ * 3);
+        if (filed_.size() < boundary_size_ * 3) filed_.resize(boundary_size_ * 3);
         uint32_t numbered = 0, filed = 0, finite = kInfinite;
-        for (const Boundary& b : boundary_) {
+        for (size_t at = 0; at < boundary_size_; ++at) {
+            const Boundary& b = boundary_[at];
             const uint32_t t = new_cell();
             Tet& cell = tets_[t];
             std::copy(tets_[b.cell].v, tets_[b.cell].v + 4, cell.v);
@@ -286,9 +332,9 @@ private:
         } else {
             edges_.finish([&](uint32_t x, uint32_t y) { tets_[x >> 2].n[x & 3] = y; });
         }
-        for (uint32_t c : cavity_) {
-            tets_[c].v[0] = kDead;
-            free_.push_back(c);
+        for (size_t at = 0; at < cavity_size_; ++at) {
+            tets_[cavity_[at]].v[0] = kDead;
+            free_.push_back(cavity_[at]);
         }
         if (finite != kInfinite) last_ = finite;
     }
@@ -324,8 +370,9 @@ private:
     std::vector<uint32_t> free_;
     std::vector<char> initial_;
     std::vector<float> padded_;  // 4 floats per point
-    std::vector<uint32_t> cavity_;
-    std::vector<Boundary> boundary_;
+    std::vector<uint32_t> cavity_;  // the first cavity_size_ in use
+    std::vector<Boundary> boundary_;  // the first boundary_size_ in use
+    size_t cavity_size_ = 0, boundary_size_ = 0;
     struct Local {
         uint32_t stamp, number;  // the insertion that numbered the point, its number on the boundary
     };

@@ -106,6 +106,14 @@ void fill_grid(StoreData& data, Walk&& walk) {
     }
 }
 
+#ifdef TETPROBE_X86_64
+// The AVX2 fill compiled for that target and flattened: the walk and its orientation kernel are
+// inlined into it (GCC does not inline the target("avx2") kernel into the generic walk template).
+__attribute__((target("avx2"), flatten)) void fill_grid_avx2(StoreData& data, const float* padded) {
+    fill_grid(data, [&](const float p[3], uint32_t cell) { return walk_inner_cells_3d<Avx2Orientations>(data, padded, p, cell); });
+}
+#endif
+
 }  // namespace
 
 void start_grid_dimensions(const float lo[3], const float hi[3], uint32_t inner_cells, uint32_t out[3]) {
@@ -152,9 +160,7 @@ void fill_start_grid(StoreData& data) {
     for (size_t j = 0; j < data.positions.size() / 3; ++j) std::copy_n(&data.positions[3 * j], 3, &padded[4 * j]);
 #ifdef TETPROBE_X86_64
     if (cpu_has_avx2() && !std::getenv("TP_NO_AVX2")) {
-        fill_grid(data, [&](const float p[3], uint32_t cell) {
-            return walk_inner_cells_3d<Avx2Orientations>(data, padded.data(), p, cell);
-        });
+        fill_grid_avx2(data, padded.data());
         return;
     }
 #endif

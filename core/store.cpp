@@ -160,7 +160,11 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
         else
             set_cell_records<uint16_t>(s, section(kSectionCells));
     }
-    validate_cell_records(s);
+    // Rebuilt tetrahedra need no check: core made them from the validated positions with exact
+    // predicates, and the rebuild already refused counts that differ from the header's. Rebuilt flat
+    // and line cells are checked, since there a forged axis is caught only by their zero area or
+    // length (check_records).
+    if (h.layout != kLayoutRebuilt || s.dimension < 3) validate_cell_records(s);
     decode_normals(s, section(kSectionNormals));
     if (s.leak_offsets) mark_blocked_cells(s);
     // The query kernels for this store and CPU, once (store_queries.cpp calls only these).

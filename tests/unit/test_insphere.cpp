@@ -268,6 +268,10 @@ TEST_CASE("the 2D tie rule is TetGen's 3D rule under an apex of the highest inde
 namespace {
 // The kernel inlines only into AVX2 code.
 __attribute__((target("avx2"))) bool avx2_filter(const float* const P[5], int* sign) { return Avx2Insphere::filter(P, sign); }
+__attribute__((target("avx2"))) void avx2_filter4(const float* const cells[4][4], const float* e, unsigned* inside,
+                                                  unsigned* outside) {
+    Avx2Insphere::filter4(cells, e, inside, outside);
+}
 }  // namespace
 #endif
 
@@ -294,4 +298,62 @@ TEST_CASE("the AVX2 in-sphere filter decides exactly as the scalar one, bit for 
         REQUIRE(scalar == avx2);
     }
 #endif
+}
+
+TEST_CASE("the four-cell in-sphere filters decide each cell as insphere_filter does, and never wrongly", "[insphere]") {
+    // Random and cospherical cells (exact ties the filter must leave undecided or call 0), at scales
+    // across the float range; each lane against the one-cell filter and the exact sign.
+    std::mt19937 rng(43);
+    std::uniform_real_distribution<double> u(-4, 4);
+    std::vector<P3> sphere;
+    for (int x = -5; x <= 5; ++x)
+        for (int y = -5; y <= 5; ++y)
+            for (int z = -5; z <= 5; ++z)
+                if (x * x + y * y + z * z == 25) sphere.push_back({float(x), float(y), float(z)});
+    size_t decided = 0, undecided = 0;
+    for (int trial = 0; trial < 5000; ++trial) {
+        const int scale = trial % 9 * 6 - 24;
+        auto draw = [&](float* out) {
+            const P3 p = trial % 3 == 0 ? sphere[rng() % sphere.size()] : P3{float(u(rng)), float(u(rng)), float(u(rng))};
+            for (int k = 0; k < 3; ++k) out[k] = std::ldexp(p[size_t(k)], scale);
+        };
+        float padded[4][4][4] = {}, e[4] = {};
+        draw(e);
+        const float* cells[4][4];
+        for (int c = 0; c < 4; ++c) {
+            do {
+                for (int i = 0; i < 4; ++i) draw(padded[c][i]);
+            } while (orient3d(padded[c][0], padded[c][1], padded[c][2], padded[c][3]) == 0);
+            if (orient3d(padded[c][0], padded[c][1], padded[c][2], padded[c][3]) < 0)
+                for (int k = 0; k < 3; ++k) std::swap(padded[c][0][k], padded[c][1][k]);
+            for (int i = 0; i < 4; ++i) cells[c][i] = padded[c][i];
+        }
+        std::vector<std::pair<unsigned, unsigned>> results;
+        unsigned inside = 0, outside = 0;
+        ScalarInsphere::filter4(cells, e, &inside, &outside);
+        results.push_back({inside, outside});
+#ifdef TETPROBE_X86_64
+        if (cpu_has_avx2()) {
+            avx2_filter4(cells, e, &inside, &outside);
+            results.push_back({inside, outside});
+        }
+#endif
+        for (const auto& [in, out] : results) {
+            REQUIRE((in & out) == 0);
+            for (int c = 0; c < 4; ++c) {
+                int sign = 7;
+                const bool one = insphere_filter(cells[c][0], cells[c][1], cells[c][2], cells[c][3], e, &sign);
+                REQUIRE(bool((in | out) >> c & 1u) == one);
+                if (!one) {
+                    ++undecided;
+                    continue;
+                }
+                ++decided;
+                REQUIRE(bool(in >> c & 1u) == (sign > 0));
+                REQUIRE(bool(in >> c & 1u) == (insphere_exact(cells[c][0], cells[c][1], cells[c][2], cells[c][3], e) > 0));
+            }
+        }
+    }
+    REQUIRE(decided > 1000);
+    REQUIRE(undecided > 100);  // the cospherical cells reach the exact fallback
 }
