@@ -156,52 +156,52 @@ TP_SIMD void blend_unorm8_simd(const uint8_t* const records[4], const float weig
     unorm8_channel<2>(r0, r1, r2, r3, a0, a1, a2, a3, zero, step, out);
 }
 
-// The 3 codes of channel C (coefficients 1..3) minus their zeros, as floats in lanes 1..3, from a
-// 15-byte record read without going past it: the 4 bytes ending at channel C's last code, so lane 0
-// holds the byte before the codes (the caller replaces that lane).
-template <int C>
-TP_SIMD_INLINE __m128 unorm8_l1_offsets(const uint8_t* record, __m128i zero) {
-    int32_t bytes;
-    std::memcpy(&bytes, record + 5 + 3 * C, sizeof bytes);
-    return _mm_cvtepi32_ps(_mm_sub_epi32(_mm_cvtepu8_epi32(_mm_cvtsi32_si128(bytes)), zero));
-}
-
-// Lane C of v in every lane.
-template <int C>
-TP_SIMD_INLINE __m128 splat(__m128 v) {
-    return _mm_shuffle_ps(v, v, _MM_SHUFFLE(C, C, C, C));
-}
-
-// Channel C's L0 (lane C of l0) and coefficients 1..3 to out[9C..9C+3].
-template <int C>
-TP_SIMD_INLINE void unorm8_l1_channel(const uint8_t* r0, const uint8_t* r1, const uint8_t* r2, const uint8_t* r3, __m128 a0,
-                                      __m128 a1, __m128 a2, __m128 a3, __m128 l0, __m128i zero, __m128 step, float out[27]) {
-    __m128 sum = _mm_mul_ps(splat<C>(a0), unorm8_l1_offsets<C>(r0, zero));
-    sum = _mm_add_ps(sum, _mm_mul_ps(splat<C>(a1), unorm8_l1_offsets<C>(r1, zero)));
-    sum = _mm_add_ps(sum, _mm_mul_ps(splat<C>(a2), unorm8_l1_offsets<C>(r2, zero)));
-    sum = _mm_add_ps(sum, _mm_mul_ps(splat<C>(a3), unorm8_l1_offsets<C>(r3, zero)));
-    _mm_storeu_ps(out + 9 * C, _mm_blend_ps(_mm_mul_ps(step, sum), splat<C>(l0), 1));
+// unorm8_l1 works on 12 lanes, [L0, c1, c2, c3] for each channel (red and green in a 256-bit vector,
+// blue in a 128-bit one), so that the blend comes out in the layout of out: in each channel's L0 lane
+// the "code" is a constant 1 (a zero byte minus zero -1), so the lane sums w_k L_k, exactly the L0
+// blend, and its step is 1.
+// Record k's terms: lane i of each channel is a_k * d_i with a_k = w_k * L_k.
+TP_SIMD_INLINE void unorm8_l1_terms(const uint8_t* record, float weight, __m256& red_green, __m128& blue) {
+    const __m128i low = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(record));       // bytes 0..7
+    const __m128i high = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(record + 7));  // bytes 7..14
+    const __m128 l0 = _mm_cvtph_ps(_mm_and_si128(low, _mm_set_epi64x(0, 0x0000FFFFFFFFFFFFll)));
+    const __m128 a = _mm_mul_ps(_mm_set1_ps(weight), l0);
+    // Index i < 8 is byte i, index 8 + j byte 7 + j: the codes r1..r3, g1..g3, b1..b3 are at indices
+    // 6, 7, 9, 10, 11, 12, 13, 14, 15; -1 gives a zero byte.
+    const __m128i bytes = _mm_unpacklo_epi64(low, high);
+    const __m256i red_green_codes = _mm256_shuffle_epi8(
+        _mm256_broadcastsi128_si256(bytes),
+        _mm256_setr_epi8(-1, -1, -1, -1, 6, -1, -1, -1, 7, -1, -1, -1, 9, -1, -1, -1,        //
+                         -1, -1, -1, -1, 10, -1, -1, -1, 11, -1, -1, -1, 12, -1, -1, -1));
+    const __m128i blue_codes = _mm_shuffle_epi8(bytes, _mm_setr_epi8(-1, -1, -1, -1, 13, -1, -1, -1, 14, -1, -1, -1, 15, -1, -1, -1));
+    const __m128i zero = _mm_setr_epi32(-1, kUnorm8Zero[1], kUnorm8Zero[2], kUnorm8Zero[3]);
+    const __m256 red_green_d = _mm256_cvtepi32_ps(_mm256_sub_epi32(red_green_codes, _mm256_broadcastsi128_si256(zero)));
+    const __m128 blue_d = _mm_cvtepi32_ps(_mm_sub_epi32(blue_codes, zero));
+    const __m256 red_green_a = _mm256_permutevar8x32_ps(_mm256_castps128_ps256(a), _mm256_setr_epi32(0, 0, 0, 0, 1, 1, 1, 1));
+    red_green = _mm256_mul_ps(red_green_a, red_green_d);
+    blue = _mm_mul_ps(_mm_shuffle_ps(a, a, _MM_SHUFFLE(2, 2, 2, 2)), blue_d);
 }
 
 TP_SIMD void blend_unorm8_l1_simd(const uint8_t* const records[4], const float weights[4], float out[27]) {
-    const uint8_t* const r0 = records[0];
-    const uint8_t* const r1 = records[1];
-    const uint8_t* const r2 = records[2];
-    const uint8_t* const r3 = records[3];
-    const __m128 a0 = _mm_mul_ps(_mm_set1_ps(weights[0]), load_l0(r0));
-    const __m128 a1 = _mm_mul_ps(_mm_set1_ps(weights[1]), load_l0(r1));
-    const __m128 a2 = _mm_mul_ps(_mm_set1_ps(weights[2]), load_l0(r2));
-    const __m128 a3 = _mm_mul_ps(_mm_set1_ps(weights[3]), load_l0(r3));
-    const __m128 l0 = _mm_add_ps(_mm_add_ps(_mm_add_ps(a0, a1), a2), a3);
-    const __m128i zero = _mm_setr_epi32(0, kUnorm8Zero[1], kUnorm8Zero[2], kUnorm8Zero[3]);
-    const __m128 step = _mm_setr_ps(0.0f, kUnorm8Step[1], kUnorm8Step[2], kUnorm8Step[3]);
+    __m256 red_green, red_green_k;
+    __m128 blue, blue_k;
+    unorm8_l1_terms(records[0], weights[0], red_green, blue);
+    unorm8_l1_terms(records[1], weights[1], red_green_k, blue_k);
+    red_green = _mm256_add_ps(red_green, red_green_k), blue = _mm_add_ps(blue, blue_k);
+    unorm8_l1_terms(records[2], weights[2], red_green_k, blue_k);
+    red_green = _mm256_add_ps(red_green, red_green_k), blue = _mm_add_ps(blue, blue_k);
+    unorm8_l1_terms(records[3], weights[3], red_green_k, blue_k);
+    red_green = _mm256_add_ps(red_green, red_green_k), blue = _mm_add_ps(blue, blue_k);
+    const __m128 step = _mm_setr_ps(1.0f, kUnorm8Step[1], kUnorm8Step[2], kUnorm8Step[3]);
+    red_green = _mm256_mul_ps(_mm256_set_m128(step, step), red_green);
+    blue = _mm_mul_ps(step, blue);
     const __m256 zeros = _mm256_setzero_ps();
     _mm256_storeu_ps(out + 1, zeros);
     _mm256_storeu_ps(out + 10, zeros);
     _mm256_storeu_ps(out + 19, zeros);
-    unorm8_l1_channel<0>(r0, r1, r2, r3, a0, a1, a2, a3, l0, zero, step, out);
-    unorm8_l1_channel<1>(r0, r1, r2, r3, a0, a1, a2, a3, l0, zero, step, out);
-    unorm8_l1_channel<2>(r0, r1, r2, r3, a0, a1, a2, a3, l0, zero, step, out);
+    _mm_storeu_ps(out, _mm256_castps256_ps128(red_green));
+    _mm_storeu_ps(out + 9, _mm256_extractf128_ps(red_green, 1));
+    _mm_storeu_ps(out + 18, blue);
 }
 
 #undef TP_SIMD_INLINE
