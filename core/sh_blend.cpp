@@ -56,9 +56,10 @@ void blend_unorm8_portable(const uint8_t* const records[4], const float weights[
 #define TP_SIMD_INLINE __attribute__((target("avx2,f16c,fma"), always_inline)) inline
 
 // The SIMD kernels name every intermediate (the four records, their weights and weighted L0s) as its
-// own variable, never an array: an array of vectors filled in a loop goes through the stack, and on
-// this machine (AMD Zen 4) storing it through one register and reading it back through another cost
-// the unorm8 kernel 13 to 80 ns a query. Each record pointer is read once, where the caller put it.
+// own variable, never an array: arrays of vectors filled in loops went through the stack (stored
+// through one register, read back through the stack pointer), and the unorm8 kernel took 2 to 10 times
+// as long on the benchmark machine (AMD EPYC, Zen 4), depending on where the stack sat; without them
+// it is within 1.5x of the half kernel. Each record pointer is read once, where the caller put it.
 
 // Four halves at record + 2 * index, without reading past them.
 TP_SIMD_INLINE __m128 load_4_halves(const uint8_t* record, int index) {
