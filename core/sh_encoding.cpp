@@ -9,9 +9,6 @@ namespace tetprobe {
 
 namespace {
 
-constexpr double kSqrt3 = 1.7320508075688772935;
-constexpr double kSqrt15Half = 1.9364916731037084426;  // sqrt(15) / 2
-constexpr double kSqrt5 = 2.2360679774997896964;
 constexpr float kHalfMax = 65504.0f;
 
 uint16_t read_half(const uint8_t* at) {
@@ -47,12 +44,6 @@ uint8_t unorm8_code(int i, float l, float c) {
 
 }  // namespace
 
-const float kUnorm8Step[9] = {0.0f,
-                              float(kSqrt3 / 127),      float(kSqrt3 / 127),      float(kSqrt3 / 127),
-                              float(kSqrt15Half / 127), float(kSqrt15Half / 127), float(kSqrt5 / 170),
-                              float(kSqrt15Half / 127), float(kSqrt15Half / 127)};
-const int32_t kUnorm8Zero[9] = {0, 128, 128, 128, 128, 128, 85, 128, 128};
-const double kUnorm8RatioMax[9] = {1.0, kSqrt3, kSqrt3, kSqrt3, kSqrt15Half, kSqrt15Half, kSqrt5, kSqrt15Half, kSqrt15Half};
 
 uint32_t sh_encoding_coefficients(ShEncoding encoding) {
     return encoding == kShHalfL1 || encoding == kShUnorm8L1 ? 4u : 9u;

@@ -44,10 +44,23 @@ uint32_t sh_record_bytes(ShEncoding encoding, bool padded);
 
 // The 8-bit coefficients' codes: coefficient i (1..8) decodes to kUnorm8Step[i] * (L * (q - kUnorm8Zero[i])).
 // Index 0 (L0, a half) is unused.
-extern const float kUnorm8Step[9];
-extern const int32_t kUnorm8Zero[9];
+// Defined here (not in the .cpp) so that the blend kernels see them as constants.
+namespace unorm8_range {
+inline constexpr double kSqrt3 = 1.7320508075688772935;
+inline constexpr double kSqrt15Half = 1.9364916731037084426;  // sqrt(15) / 2
+inline constexpr double kSqrt5 = 2.2360679774997896964;
+}  // namespace unorm8_range
+inline constexpr float kUnorm8Step[9] = {
+    0.0f,
+    float(unorm8_range::kSqrt3 / 127),      float(unorm8_range::kSqrt3 / 127),      float(unorm8_range::kSqrt3 / 127),
+    float(unorm8_range::kSqrt15Half / 127), float(unorm8_range::kSqrt15Half / 127), float(unorm8_range::kSqrt5 / 170),
+    float(unorm8_range::kSqrt15Half / 127), float(unorm8_range::kSqrt15Half / 127)};
+inline constexpr int32_t kUnorm8Zero[9] = {0, 128, 128, 128, 128, 128, 85, 128, 128};
 // The larger end of each coefficient's ratio range in magnitude (sqrt(3), sqrt(15)/2, sqrt(5)).
-extern const double kUnorm8RatioMax[9];
+inline constexpr double kUnorm8RatioMax[9] = {
+    1.0,
+    unorm8_range::kSqrt3,      unorm8_range::kSqrt3,      unorm8_range::kSqrt3,      unorm8_range::kSqrt15Half,
+    unorm8_range::kSqrt15Half, unorm8_range::kSqrt5,      unorm8_range::kSqrt15Half, unorm8_range::kSqrt15Half};
 
 // Writes one probe's 27 finite floats as a record of sh_record_bytes(encoding, false) bytes (the
 // caller zeroes any padding).

@@ -1,7 +1,8 @@
 // The store's SH encodings (core/sh_encoding.h) and the blend that decodes them (core/sh_blend.h):
 // the 8-bit ranges are the ones a non-negative radiance reaches, every encoding decodes within its
 // stated bound (random radiance, deltas, constants), L0 <= 0 is handled as documented, each kernel
-// gives the portable kernel's bits and, with weight 1 on a probe, exactly that probe's decoded SH,
+// gives the bits of the documented expression (written out in the test) and of the portable kernel and,
+// with weight 1 on a probe, exactly that probe's decoded SH,
 // and a store reproduces linear fields within the encoding's error.
 #include "probe_families.h"
 #include "sh_test_support.h"
@@ -86,7 +87,76 @@ void random_radiance(std::mt19937& rng, float sh[27]) {
     }
 }
 
+// sh_blend.h's expression of the blend, written out here from the format (store_format.h) rather than
+// taken from core: products, then sums from probe 0 to 3, no fused multiply-add (the tests build with
+// -ffp-contract=off, like the library).
+void reference_blend(ShEncoding e, const uint8_t* const r[4], const float w[4], float out[27]) {
+    const int coefficients = is_l1(e) ? 4 : 9;
+    auto half_at = [](const uint8_t* record, int index) {
+        uint16_t h;
+        std::memcpy(&h, record + 2 * index, 2);
+        return half_to_float(h);
+    };
+    std::fill(out, out + 27, 0.0f);
+    for (int c = 0; c < 3; ++c) {
+        if (!sh_encoding_is_unorm8(e)) {
+            for (int i = 0; i < coefficients; ++i) {
+                const int at = coefficients * c + i;
+                out[9 * c + i] = ((w[0] * half_at(r[0], at) + w[1] * half_at(r[1], at)) + w[2] * half_at(r[2], at)) +
+                                 w[3] * half_at(r[3], at);
+            }
+            continue;
+        }
+        float a[4];
+        for (int k = 0; k < 4; ++k) a[k] = w[k] * half_at(r[k], c);
+        out[9 * c] = ((a[0] + a[1]) + a[2]) + a[3];
+        for (int i = 1; i < coefficients; ++i) {
+            const int at = 6 + c * (coefficients - 1) + (i - 1);
+            float d[4];
+            for (int k = 0; k < 4; ++k) d[k] = float(int32_t(r[k][at]) - kUnorm8Zero[i]);
+            out[9 * c + i] = kUnorm8Step[i] * (((a[0] * d[0] + a[1] * d[1]) + a[2] * d[2]) + a[3] * d[3]);
+        }
+    }
+}
+
 }  // namespace
+
+TEST_CASE("every blend kernel, dispatched and portable, gives the bits of the documented expression", "[sh_encoding][blend]") {
+    // Records from a few probes' worth of random bytes (finite halves where the format stores halves),
+    // with repeated pointers, zero and negative weights, and weight 1 on one probe.
+    std::mt19937 rng(75);
+    std::uniform_real_distribution<float> value(-300.0f, 300.0f), unit(-0.25f, 1.0f);
+    std::uniform_int_distribution<int> byte(0, 255), pick(0, 5);
+    INFO("F16C/AVX2 kernels available: " << half_simd_available());
+    for (const ShEncoding e : kEncodings) {
+        const size_t bytes = sh_record_bytes(e, false);
+        const int halves = sh_encoding_is_unorm8(e) ? 3 : int(bytes / 2);
+        const ShBlendFunction kernels[2] = {sh_blend_function(e), sh_blend_function_portable(e)};
+        for (int trial = 0; trial < 2000; ++trial) {
+            std::vector<uint8_t> pool(6 * bytes);
+            for (auto& b : pool) b = uint8_t(byte(rng));
+            for (int p = 0; p < 6; ++p)
+                for (int h = 0; h < halves; ++h) {
+                    const uint16_t bits = float_to_half(trial % 7 == 0 ? 0.0f : value(rng));
+                    std::memcpy(pool.data() + p * bytes + 2 * h, &bits, 2);
+                }
+            const uint8_t* r[4];
+            for (auto& x : r) x = pool.data() + pick(rng) * bytes;
+            float w[4] = {unit(rng), unit(rng), unit(rng), unit(rng)};
+            if (trial % 3 == 0) w[trial % 4] = 0.0f;
+            if (trial % 11 == 0) w[0] = w[1] = w[2] = w[3] = 0.0f, w[trial % 4] = 1.0f;
+            float expected[27];
+            reference_blend(e, r, w, expected);
+            for (const ShBlendFunction f : kernels) {
+                float out[27];
+                std::memset(out, 0xA5, sizeof out);  // every coefficient must be written
+                f(r, w, out);
+                INFO("encoding " << e << " trial " << trial);
+                REQUIRE(std::memcmp(out, expected, sizeof out) == 0);
+            }
+        }
+    }
+}
 
 TEST_CASE("the 8-bit ranges are where Y_i / Y_00 goes over the sphere, with ratio 0 exact", "[sh_encoding]") {
     double lowest[9], highest[9];
