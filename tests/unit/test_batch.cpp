@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -52,6 +53,14 @@ std::unique_ptr<Store> load_portable(const std::vector<uint8_t>& blob) {
     setenv("TP_NO_AVX2", "1", 1);
     std::unique_ptr<Store> store = Store::load(blob.data(), blob.size());
     unsetenv("TP_NO_AVX2");
+    return store;
+}
+
+// The blob loaded with a batch kernel ("lanes" or "loop", TP_BATCH_KERNEL, read at load), AVX2 or portable.
+std::unique_ptr<Store> load_with(const std::vector<uint8_t>& blob, const char* batch_kernel, bool portable) {
+    setenv("TP_BATCH_KERNEL", batch_kernel, 1);
+    std::unique_ptr<Store> store = portable ? load_portable(blob) : Store::load(blob.data(), blob.size());
+    unsetenv("TP_BATCH_KERNEL");
     return store;
 }
 
@@ -184,18 +193,21 @@ TEST_CASE("batches answer as single queries bit for bit, on every kind of store 
         const size_t n = points.size() / 3;
         const std::vector<int32_t> cold(n, -1);
         const Answers expected = singles(*chosen, points, cold, false);
-        // Cold, then from the cells found (the next frame's hints), then chained.
-        require_same(batch(*chosen, points, cold, false), expected, true);
         require_same(singles(*portable, points, cold, false), expected, true);
-        require_same(batch(*portable, points, cold, false), expected, true);
         std::vector<int32_t> warm = expected.cells;
         std::rotate(warm.begin(), warm.begin() + 7, warm.end());  // hints from other queries: longer walks
         const Answers from_hints = singles(*chosen, points, warm, false);
-        require_same(batch(*chosen, points, warm, false), from_hints, true);
-        require_same(batch(*portable, points, warm, false), from_hints, true);
         const Answers chained = singles(*chosen, points, cold, true);
-        require_same(batch(*chosen, points, cold, true), chained, false);
-        require_same(batch(*portable, points, cold, true), chained, false);
+        // Both batch kernels (eight lanes in structure of arrays, and the loop), each on both instruction sets.
+        for (const char* kernel : {"lanes", "loop"})
+            for (bool portable_kernels : {false, true}) {
+                INFO("batch kernel " << kernel << (portable_kernels ? ", portable" : ", AVX2 where there"));
+                const auto store = load_with(blob, kernel, portable_kernels);
+                // Cold, then from the cells found (the next frame's hints), then chained.
+                require_same(batch(*store, points, cold, false), expected, true);
+                require_same(batch(*store, points, warm, false), from_hints, true);
+                require_same(batch(*store, points, cold, true), chained, false);
+            }
     }
 }
 
