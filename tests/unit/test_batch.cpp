@@ -211,6 +211,25 @@ TEST_CASE("batches answer as single queries bit for bit, on every kind of store 
     }
 }
 
+TEST_CASE("batches of every size up to past two lane refills answer as single queries", "[batch]") {
+    // Fewer queries than lanes, exactly as many, and lanes that run dry at different times.
+    const std::vector<float> positions = families::random_cloud(400, 8).positions;
+    const std::vector<uint8_t> blob = build_blob(positions);
+    const std::vector<float> points = path(40, 9.0f);  // inside the hull and beyond it
+    for (const char* kernel : {"lanes", "loop"})
+        for (bool portable : {false, true}) {
+            INFO("batch kernel " << kernel << (portable ? ", portable" : ", AVX2 where there"));
+            const auto store = load_with(blob, kernel, portable);
+            for (size_t count = 1; count <= 40; ++count) {
+                INFO(count << " queries");
+                const std::vector<float> some(points.begin(), points.begin() + 3 * count);
+                std::vector<int32_t> hints(count);
+                for (size_t i = 0; i < count; ++i) hints[i] = i % 4 == 3 ? -1 : int32_t((i * 37) % store->header().cell_count);
+                require_same(batch(*store, some, hints, false), singles(*store, some, hints, false), true);
+            }
+        }
+}
+
 TEST_CASE("a frame split into ranges on the caller's threads answers as one batch call", "[batch][threads]") {
     const auto store = build(families::random_cloud(600, 3).positions);
     const size_t n = 3 * 1024 + 17;
