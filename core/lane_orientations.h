@@ -17,7 +17,7 @@ constexpr int kLanes = 8;
 struct alignas(32) LaneBlock {
     double D[4][kLanes];       // D[k][lane]
     double bound[kLanes];
-    alignas(16) float weights[kLanes][4];  // float(D[k] * (1 / (D0 + D1 + D2 + D3))), meaningful where held
+    alignas(16) float weights[kLanes][4];  // float(D[k] * (1 / (D0 + D1 + D2 + D3))) where held, else unspecified
     unsigned held = 0;         // bit lane: every D above the bound (the filter decides the cell holds the query)
 };
 
@@ -29,9 +29,10 @@ struct ScalarLaneOrientations {
             const Orientations o = ScalarOrientations::of(P[lane], q[lane]);
             for (int k = 0; k < 4; ++k) out.D[k][lane] = o.D[k];
             out.bound[lane] = o.bound;
+            if (!ScalarOrientations::all_above_bound(o)) continue;  // weights only where read
             const double scale = 1.0 / (o.D[0] + o.D[1] + o.D[2] + o.D[3]);
             for (int k = 0; k < 4; ++k) out.weights[lane][k] = float(o.D[k] * scale);
-            held |= unsigned(ScalarOrientations::all_above_bound(o)) << lane;
+            held |= 1u << lane;
         }
         out.held = held;
     }
@@ -94,8 +95,12 @@ struct Avx2LaneOrientations {
         _mm256_store_pd(&out.bound[a], bound);
         const __m256d held = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(D[0], bound, _CMP_GT_OQ), _mm256_cmp_pd(D[1], bound, _CMP_GT_OQ)),
                                            _mm256_and_pd(_mm256_cmp_pd(D[2], bound, _CMP_GT_OQ), _mm256_cmp_pd(D[3], bound, _CMP_GT_OQ)));
-        // The weights, each lane's (D0 + D1) + D2) + D3 as the scalar sum, transposed to one float4 per lane.
-        const __m256d scale = _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(D[0], D[1]), D[2]), D[3]));
+        // The weights, each lane's (D0 + D1) + D2) + D3 as the scalar sum, transposed to one float4 per lane. A
+        // lane that is not held divides by 1 instead (its weights are never read): no division by a flat cell's
+        // zero, which a caller's floating-point traps would catch.
+        const __m256d one = _mm256_set1_pd(1.0);
+        const __m256d sum = _mm256_add_pd(_mm256_add_pd(_mm256_add_pd(D[0], D[1]), D[2]), D[3]);
+        const __m256d scale = _mm256_div_pd(one, _mm256_blendv_pd(one, sum, held));
         __m128 w0 = _mm256_cvtpd_ps(_mm256_mul_pd(D[0], scale)), w1 = _mm256_cvtpd_ps(_mm256_mul_pd(D[1], scale));
         __m128 w2 = _mm256_cvtpd_ps(_mm256_mul_pd(D[2], scale)), w3 = _mm256_cvtpd_ps(_mm256_mul_pd(D[3], scale));
         _MM_TRANSPOSE4_PS(w0, w1, w2, w3);
