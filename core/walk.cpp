@@ -250,6 +250,8 @@ InstructionSet detect_instruction_set() {
     return half_simd_available() && !std::getenv("TP_NO_AVX2") ? InstructionSet::avx2 : InstructionSet::portable;
 }
 
+// The lanes unless the environment says otherwise: level with the loop on small stores, faster on large ones,
+// where the lanes' loads of different queries overlap (tetprobe_bench store --queries, TP_BATCH_KERNEL=loop).
 BatchKernel detect_batch_kernel() {
     const char* chosen = std::getenv("TP_BATCH_KERNEL");
     if (chosen && std::strcmp(chosen, "loop") == 0) return BatchKernel::loop;
