@@ -16,6 +16,13 @@ enum class InstructionSet { portable, avx2 };
 // once per store at load, so that tests and the benchmark can compare the two).
 InstructionSet detect_instruction_set();
 
+// How a 3-dimensional store's interpolate_batch walks: lanes, eight queries at once in structure of arrays
+// (walk_lanes.inl), or loop, the single walk query after query with their loads asked for ahead. The same
+// bits either way. TP_BATCH_KERNEL=loop or =lanes in the environment chooses (read at load, as TP_NO_AVX2:
+// for tests and the benchmark).
+enum class BatchKernel { loop, lanes };
+BatchKernel detect_batch_kernel();
+
 // The most queries a kernel's locate_batch takes at once.
 constexpr size_t kMaxBatchGroup = 64;
 
@@ -37,6 +44,7 @@ struct LocateKernel {
     void (*interpolate_batch)(const Store::Impl& store, size_t count, const float (*local)[3], int32_t* hints,
                               float* const* out_sh, Status* status);
     InstructionSet instruction_set;
+    BatchKernel batch_kernel;  // which one interpolate_batch is (3-dimensional stores; the others have one)
 };
 LocateKernel choose_locate_kernel(const Store::Impl& store, InstructionSet instruction_set);
 

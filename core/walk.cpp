@@ -17,10 +17,12 @@
 #include "core/cell_view.h"
 #include "core/exhaustive_search.h"
 #include "core/half.h"
+#include "core/lane_orientations.h"
 #include "core/outer_cells.h"
 
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 
 namespace tetprobe {
 
@@ -76,7 +78,10 @@ inline void prefetch_ahead(const Cells<Index>& cells, size_t i, size_t count, co
 #define TP_WALK_CLEAR_KERNEL ScalarOrientations
 #define TP_WALK_AVX2 false
 #define TP_WALK_TARGET
+#define TP_LANE_KERNEL ScalarLaneOrientations
 #include "core/walk_clear.inl"
+#include "core/walk_lanes.inl"
+#undef TP_LANE_KERNEL
 #undef TP_WALK_ISA
 #undef TP_WALK_CLEAR_KERNEL
 #undef TP_WALK_AVX2
@@ -88,7 +93,10 @@ inline void prefetch_ahead(const Cells<Index>& cells, size_t i, size_t count, co
 #define TP_WALK_CLEAR_KERNEL Avx2Orientations
 #define TP_WALK_AVX2 true
 #define TP_WALK_TARGET __attribute__((target("avx2")))  // clang has no target pragma
+#define TP_LANE_KERNEL Avx2LaneOrientations
 #include "core/walk_clear.inl"
+#include "core/walk_lanes.inl"
+#undef TP_LANE_KERNEL
 #undef TP_WALK_ISA
 #undef TP_WALK_CLEAR_KERNEL
 #undef TP_WALK_AVX2
@@ -210,27 +218,29 @@ void interpolate_batch_low(const Store::Impl& s, size_t count, const float (*q)[
 template <class Index, uint32_t D>
 LocateKernel kernel_low() {
     return {locate_low<Index, D>, locate_batch_low<Index, D>, interpolate_low<Index, D>, interpolate_batch_low<Index, D>,
-            InstructionSet::portable};
+            InstructionSet::portable, BatchKernel::loop};
 }
 
 template <class Index>
-LocateKernel kernel_3d(InstructionSet instruction_set) {
+LocateKernel kernel_3d(InstructionSet instruction_set, BatchKernel batch) {
+    const bool lanes = batch == BatchKernel::lanes;
 #ifdef TETPROBE_X86_64
     if (instruction_set == InstructionSet::avx2)
-        return {locate_avx2<Index>, locate_batch_avx2<Index>, interpolate_avx2<Index>, interpolate_batch_avx2<Index>,
-                instruction_set};
+        return {locate_avx2<Index>, locate_batch_avx2<Index>, interpolate_avx2<Index>,
+                lanes ? interpolate_batch_lanes_avx2<Index> : interpolate_batch_avx2<Index>, instruction_set, batch};
 #endif
     return {locate_portable<Index>, locate_batch_portable<Index>, interpolate_portable<Index>,
-            interpolate_batch_portable<Index>, InstructionSet::portable};
+            lanes ? interpolate_batch_lanes_portable<Index> : interpolate_batch_portable<Index>, InstructionSet::portable,
+            batch};
 }
 
 template <class Index>
-LocateKernel kernel_for_dimension(uint32_t dimension, InstructionSet instruction_set) {
+LocateKernel kernel_for_dimension(uint32_t dimension, InstructionSet instruction_set, BatchKernel batch) {
     switch (dimension) {
         case 0: return kernel_low<Index, 0>();
         case 1: return kernel_low<Index, 1>();
         case 2: return kernel_low<Index, 2>();
-        default: return kernel_3d<Index>(instruction_set);
+        default: return kernel_3d<Index>(instruction_set, batch);
     }
 }
 
@@ -240,9 +250,19 @@ InstructionSet detect_instruction_set() {
     return half_simd_available() && !std::getenv("TP_NO_AVX2") ? InstructionSet::avx2 : InstructionSet::portable;
 }
 
+// The lanes unless the environment says otherwise: level with the loop on small stores, faster on large ones,
+// where the lanes' loads of different queries overlap (tetprobe_bench store --queries, TP_BATCH_KERNEL=loop).
+BatchKernel detect_batch_kernel() {
+    const char* chosen = std::getenv("TP_BATCH_KERNEL");
+    if (chosen && std::strcmp(chosen, "loop") == 0) return BatchKernel::loop;
+    if (chosen && std::strcmp(chosen, "lanes") == 0) return BatchKernel::lanes;
+    return BatchKernel::lanes;
+}
+
 LocateKernel choose_locate_kernel(const Store::Impl& store, InstructionSet instruction_set) {
-    LocateKernel kernel = store.index32 ? kernel_for_dimension<uint32_t>(store.dimension, instruction_set)
-                                        : kernel_for_dimension<uint16_t>(store.dimension, instruction_set);
+    const BatchKernel batch = detect_batch_kernel();
+    LocateKernel kernel = store.index32 ? kernel_for_dimension<uint32_t>(store.dimension, instruction_set, batch)
+                                        : kernel_for_dimension<uint16_t>(store.dimension, instruction_set, batch);
     if (store.leak_offsets) kernel.interpolate = nullptr, kernel.interpolate_batch = nullptr;  // weighed between locate and blend
     return kernel;
 }

@@ -56,11 +56,11 @@ TP_WALK_TARGET inline __attribute__((always_inline)) bool TP_WALK_ISA(walk_clear
 }
 
 // The query kernels (locate_kernel.h) of a 3-dimensional store: the lean walk, the general walk where
-// it stops. The batch asks for each query's dependent loads ahead: its hint's cell record kRecordAhead
-// queries before it runs, then (the record has arrived) that cell's vertex positions kPositionsAhead
-// before; the lean walk asks for the SH of its start cell itself. The queries are independent, so the
-// CPU overlaps them out of order. (An 8-lane structure-of-arrays walk measured no faster: one cell's
-// four orientations already fill a vector, and a coherent query rarely takes a step.)
+// it stops. The loop batch asks for each query's dependent loads ahead: its hint's cell record
+// kRecordAhead queries before it runs, then (the record has arrived) that cell's vertex positions
+// kPositionsAhead before; the lean walk asks for the SH of its start cell itself. The queries are
+// independent, so the CPU overlaps them out of order. The lane batch (walk_lanes.inl) walks eight at
+// once in structure of arrays; TP_BATCH_KERNEL chooses (locate_kernel.h).
 template <class Index>
 TP_WALK_TARGET void TP_WALK_ISA(locate)(const Store::Impl& s, const float q[3], int32_t hint, Location& loc) {
     const Cells<Index> cells(s);

@@ -11,6 +11,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -52,6 +53,14 @@ std::unique_ptr<Store> load_portable(const std::vector<uint8_t>& blob) {
     setenv("TP_NO_AVX2", "1", 1);
     std::unique_ptr<Store> store = Store::load(blob.data(), blob.size());
     unsetenv("TP_NO_AVX2");
+    return store;
+}
+
+// The blob loaded with a batch kernel ("lanes" or "loop", TP_BATCH_KERNEL, read at load), AVX2 or portable.
+std::unique_ptr<Store> load_with(const std::vector<uint8_t>& blob, const char* batch_kernel, bool portable) {
+    setenv("TP_BATCH_KERNEL", batch_kernel, 1);
+    std::unique_ptr<Store> store = portable ? load_portable(blob) : Store::load(blob.data(), blob.size());
+    unsetenv("TP_BATCH_KERNEL");
     return store;
 }
 
@@ -184,19 +193,41 @@ TEST_CASE("batches answer as single queries bit for bit, on every kind of store 
         const size_t n = points.size() / 3;
         const std::vector<int32_t> cold(n, -1);
         const Answers expected = singles(*chosen, points, cold, false);
-        // Cold, then from the cells found (the next frame's hints), then chained.
-        require_same(batch(*chosen, points, cold, false), expected, true);
         require_same(singles(*portable, points, cold, false), expected, true);
-        require_same(batch(*portable, points, cold, false), expected, true);
         std::vector<int32_t> warm = expected.cells;
         std::rotate(warm.begin(), warm.begin() + 7, warm.end());  // hints from other queries: longer walks
         const Answers from_hints = singles(*chosen, points, warm, false);
-        require_same(batch(*chosen, points, warm, false), from_hints, true);
-        require_same(batch(*portable, points, warm, false), from_hints, true);
         const Answers chained = singles(*chosen, points, cold, true);
-        require_same(batch(*chosen, points, cold, true), chained, false);
-        require_same(batch(*portable, points, cold, true), chained, false);
+        // Both batch kernels (eight lanes in structure of arrays, and the loop), each on both instruction sets.
+        for (const char* kernel : {"lanes", "loop"})
+            for (bool portable_kernels : {false, true}) {
+                INFO("batch kernel " << kernel << (portable_kernels ? ", portable" : ", AVX2 where there"));
+                const auto store = load_with(blob, kernel, portable_kernels);
+                // Cold, then from the cells found (the next frame's hints), then chained.
+                require_same(batch(*store, points, cold, false), expected, true);
+                require_same(batch(*store, points, warm, false), from_hints, true);
+                require_same(batch(*store, points, cold, true), chained, false);
+            }
     }
+}
+
+TEST_CASE("batches of every size up to past two lane refills answer as single queries", "[batch]") {
+    // Fewer queries than lanes, exactly as many, and lanes that run dry at different times.
+    const std::vector<float> positions = families::random_cloud(400, 8).positions;
+    const std::vector<uint8_t> blob = build_blob(positions);
+    const std::vector<float> points = path(40, 9.0f);  // inside the hull and beyond it
+    for (const char* kernel : {"lanes", "loop"})
+        for (bool portable : {false, true}) {
+            INFO("batch kernel " << kernel << (portable ? ", portable" : ", AVX2 where there"));
+            const auto store = load_with(blob, kernel, portable);
+            for (size_t count = 1; count <= 40; ++count) {
+                INFO(count << " queries");
+                const std::vector<float> some(points.begin(), points.begin() + 3 * count);
+                std::vector<int32_t> hints(count);
+                for (size_t i = 0; i < count; ++i) hints[i] = i % 4 == 3 ? -1 : int32_t((i * 37) % store->header().cell_count);
+                require_same(batch(*store, some, hints, false), singles(*store, some, hints, false), true);
+            }
+        }
 }
 
 TEST_CASE("a frame split into ranges on the caller's threads answers as one batch call", "[batch][threads]") {
