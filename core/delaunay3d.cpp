@@ -72,6 +72,61 @@ struct Tet {
     uint32_t mark;  // stamp << 1 | (1 = not in conflict) for the insertion of that stamp
 };
 
+// Pairs the facets of one insertion's new cells across the edges they share: each new facet is
+// filed under its half-edge, and meets the facet filed under the reverse one (the cavity's boundary
+// is a closed surface wound alike throughout). Filing and finding take no branch on the data (a
+// first-or-second test would be a coin toss); the table is kept sparse so that probes rarely
+// collide. An empty slot has key 0, which no half-edge has (its ends differ).
+class EdgeLinks {
+public:
+    void start(size_t half_edges) {
+        size_t capacity = 256;
+        while (capacity < 4 * half_edges) capacity *= 2;
+        if (capacity > slots_.size()) slots_.assign(capacity, Slot{});
+        mask_ = capacity - 1;
+        filed_.resize(half_edges);
+        count_ = 0;
+    }
+    // Files one of at most half_edges facets (as many as start was given).
+    void add(uint32_t from, uint32_t to, uint32_t facet) {
+        const uint64_t key = uint64_t(from) << 32 | to;
+        size_t at = slot_of(key);
+        while (slots_[at].key != 0) at = (at + 1) & mask_;
+        slots_[at] = Slot{key, facet};
+        filed_[count_++] = Filed{key, facet, uint32_t(at)};
+    }
+    // Calls link(facet, facet across) for every filed facet, then empties the table. Throws if a
+    // half-edge has no reverse (the boundary would not be closed: only a broken tessellation).
+    template <class Link>
+    void finish(Link&& link) {
+        for (size_t i = 0; i < count_; ++i) {
+            const Filed& f = filed_[i];
+            const uint64_t reverse = f.key << 32 | f.key >> 32;
+            size_t at = slot_of(reverse);
+            while (slots_[at].key != reverse) {
+                if (slots_[at].key == 0) throw Error(Status::internal, "a cavity's boundary is not closed");
+                at = (at + 1) & mask_;
+            }
+            link(f.facet, slots_[at].facet);
+        }
+        for (size_t i = 0; i < count_; ++i) slots_[filed_[i].at].key = 0;
+    }
+
+private:
+    struct Slot {
+        uint64_t key = 0;
+        uint32_t facet = 0;
+    };
+    struct Filed {
+        uint64_t key;
+        uint32_t facet, at;
+    };
+    size_t slot_of(uint64_t key) const { return size_t((key * 0x9E3779B97F4A7C15ull) >> 40) & mask_; }
+    std::vector<Slot> slots_;
+    std::vector<Filed> filed_;
+    size_t mask_ = 0, count_ = 0;
+};
+
 // The insertion's loops over a cell's four slots or a facet's three edges, unrolled: their indices
 // become constants (-O2 does not peel them; about 2% of a rebuild, measured).
 #define TP_UNROLL_FULLY _Pragma("GCC unroll 4")

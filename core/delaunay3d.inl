@@ -26,20 +26,10 @@ private:
         uint32_t cell, facet, outside;  // cavity cell, its facet on the boundary, the link across it
     };
     struct Filed {
-        uint32_t facet, from, to;  // a new facet and its half-edge on the cavity's boundary
+        uint32_t facet, reverse;  // a new facet and where its reverse half-edge is filed
     };
-    struct EdgeSlot {
-        uint32_t from, to, stamp, facet;  // a half-edge, the insertion that filed it, its facet
-    };
-    static uint32_t edge_slot(uint32_t from, uint32_t to) {
-        return uint32_t(((uint64_t(from) << 32 | to) * 0x9E3779B97F4A7C15ull) >> 32);
-    }
-    // Out of line: only a cavity larger than any before grows the table (a power of two).
-    __attribute__((noinline)) void grow_edge_table(size_t at_least) {
-        size_t capacity = 1024;
-        while (capacity < at_least) capacity *= 2;
-        edge_slots_.assign(capacity, EdgeSlot{0, 0, 0, 0});
-    }
+    // The direct table: for cavities of at most kDirectVertices boundary vertices (p numbered too).
+    static constexpr uint32_t kDirectVertices = 255, kStride = 256;
 
     const float* point(uint32_t v) const { return positions_ + size_t(v) * 3; }
     const float* padded(uint32_t v) const { return padded_.data() + size_t(v) * 4; }
@@ -80,7 +70,8 @@ private:
     void start(const std::vector<uint32_t>& order) {
         tets_.reserve(size_t(count_) * 7 + 16);
         initial_.assign(count_, 0);
-        grow_edge_table(1024);
+        local_.assign(size_t(count_) + 1, Local{0, 0});
+        pairs_.assign(size_t(kStride) * kStride, 0);
         const uint32_t a = order[0], b = order[1];
         uint32_t c = kInfinite, d = kInfinite;
         if (same_point(a, b)) duplicate(a, b);
@@ -298,17 +289,16 @@ private:
 
         // One new cell per boundary facet: the cavity cell's vertices with the point in the slot of
         // the vertex the facet faces away from (so it keeps the cavity cell's orientation). New cells
-        // meet across the boundary's edges: each new facet is filed under its half-edge (its two
-        // vertices) and meets the facet filed under the reverse (the boundary is a closed surface
-        // wound alike throughout), in a hash table that an insertion's stamp empties. It is kept at
-        // most a quarter full, so a probe rarely goes past its first slot. The cavity's cells are
+        // meet across the boundary's edges: each new facet is filed under its half-edge and meets the
+        // facet filed under the reverse (the boundary is a closed surface wound alike throughout),
+        // in a table indexed by the boundary vertices' local numbers (EdgeLinks' hashing only for a
+        // cavity with very many vertices, as a cospherical set can make). The cavity's cells are
         // freed last, so new cells reuse the previous insertion's.
-        const size_t half_edges = boundary_size_ * 3;
-        if (half_edges * 4 > edge_slots_.size()) grow_edge_table(half_edges * 4);
-        if (filed_.size() < half_edges) filed_.resize(half_edges);
-        const uint32_t mask = uint32_t(edge_slots_.size() - 1);
-        EdgeSlot* const slots = edge_slots_.data();
-        uint32_t filed = 0, finite = kInfinite;
+        // A closed triangulated sphere with F facets has F / 2 + 2 vertices.
+        const bool direct = boundary_size_ / 2 + 2 <= kDirectVertices;
+        if (!direct) edges_.start(boundary_size_ * 3);
+        if (filed_.size() < boundary_size_ * 3) filed_.resize(boundary_size_ * 3);
+        uint32_t numbered = 0, filed = 0, finite = kInfinite;
         for (size_t at = 0; at < boundary_size_; ++at) {
             const Boundary& b = boundary_[at];
             const uint32_t t = new_cell();
@@ -317,22 +307,30 @@ private:
             cell.v[b.facet] = p;
             cell.n[b.facet] = b.outside;
             tets_[b.outside >> 2].n[b.outside & 3] = t * 4 + b.facet;
-            TP_UNROLL_FULLY
-            for (const FacetEdge& e : kFacetEdges[b.facet]) {
-                const uint32_t from = cell.v[e.end0], to = cell.v[e.end1], facet = t * 4 + e.facet;
-                uint32_t slot = edge_slot(from, to) & mask;
-                while (slots[slot].stamp == stamp_) slot = (slot + 1) & mask;
-                slots[slot] = EdgeSlot{from, to, stamp_, facet};
-                filed_[filed++] = Filed{facet, from, to};
+            if (direct) {
+                uint32_t number[4];
+                TP_UNROLL_FULLY
+                for (uint32_t k = 0; k < 4; ++k) {
+                    const uint32_t v = cell.v[k], at = v == kInfinite ? count_ : v;
+                    Local& local = local_[at];
+                    if (local.stamp != stamp_) local = Local{stamp_, numbered++};
+                    number[k] = local.number;  // p's own number is never read
+                }
+                TP_UNROLL_FULLY
+                for (const FacetEdge& e : kFacetEdges[b.facet]) {
+                    const uint32_t from = number[e.end0], to = number[e.end1], facet = t * 4 + e.facet;
+                    pairs_[from * kStride + to] = facet;
+                    filed_[filed++] = Filed{facet, to * kStride + from};
+                }
+            } else {
+                for (const FacetEdge& e : kFacetEdges[b.facet]) edges_.add(cell.v[e.end0], cell.v[e.end1], t * 4 + e.facet);
             }
             if (finite == kInfinite && cell.v[3] != kInfinite) finite = t;
         }
-        for (uint32_t i = 0; i < filed; ++i) {
-            const Filed& f = filed_[i];
-            uint32_t slot = edge_slot(f.to, f.from) & mask;
-            while (slots[slot].stamp == stamp_ && (slots[slot].from != f.to || slots[slot].to != f.from)) slot = (slot + 1) & mask;
-            if (__builtin_expect(slots[slot].stamp != stamp_, 0)) throw Error(Status::internal, "a cavity's boundary is not closed");
-            tets_[f.facet >> 2].n[f.facet & 3] = slots[slot].facet;
+        if (direct) {
+            for (uint32_t i = 0; i < filed; ++i) tets_[filed_[i].facet >> 2].n[filed_[i].facet & 3] = pairs_[filed_[i].reverse];
+        } else {
+            edges_.finish([&](uint32_t x, uint32_t y) { tets_[x >> 2].n[x & 3] = y; });
         }
         for (size_t at = 0; at < cavity_size_; ++at) {
             tets_[cavity_[at]].v[0] = kDead;
@@ -375,8 +373,13 @@ private:
     std::vector<uint32_t> cavity_;  // the first cavity_size_ in use
     std::vector<Boundary> boundary_;  // the first boundary_size_ in use
     size_t cavity_size_ = 0, boundary_size_ = 0;
-    std::vector<EdgeSlot> edge_slots_;  // stamp 0: empty (stamps start at 1)
+    struct Local {
+        uint32_t stamp, number;  // the insertion that numbered the point, its number on the boundary
+    };
+    std::vector<Local> local_;  // per point, and one for infinity
+    std::vector<uint32_t> pairs_;                // facet per (half-edge's local numbers)
     std::vector<Filed> filed_;
+    EdgeLinks edges_;
     uint32_t stamp_ = 0, last_ = 0;
 };
 
