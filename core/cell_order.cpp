@@ -105,7 +105,9 @@ void order_cells_for_locality(StoreData& data) {
     const float* positions = data.positions.data();
     const uint32_t* slots = data.cell_vertices.data();
     std::vector<uint32_t> keys(cells), old_of_new(cells);
-    std::vector<double> distance(inner);
+    // The inner cells nearest the centre, in the old order (usually one; all of them on a tie).
+    std::vector<uint32_t> nearest_cells;
+    double nearest_distance = 0;
     const uint32_t corners_inner = data.dimension + 1, corners_outer = data.dimension;
     const double inverse_inner = 1.0 / corners_inner, inverse_outer = corners_outer ? 1.0 / corners_outer : 0.0;
     for (uint32_t c = 0; c < cells; ++c) {
@@ -130,9 +132,15 @@ void order_cells_for_locality(StoreData& data) {
         keys[c] = uint32_t(code >> 31);
         old_of_new[c] = c;
         if (c < inner) {
-            distance[c] = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
-                          (centroid[1] - centre[1]) * (centroid[1] - centre[1]) +
-                          (centroid[2] - centre[2]) * (centroid[2] - centre[2]);
+            const double distance = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
+                                    (centroid[1] - centre[1]) * (centroid[1] - centre[1]) +
+                                    (centroid[2] - centre[2]) * (centroid[2] - centre[2]);
+            if (nearest_cells.empty() || distance < nearest_distance) {
+                nearest_cells.assign(1, c);
+                nearest_distance = distance;
+            } else if (distance == nearest_distance) {
+                nearest_cells.push_back(c);
+            }
         }
     }
     std::vector<uint32_t> inner_keys(keys.begin(), keys.begin() + inner), outer_keys(keys.begin() + inner, keys.end());
@@ -146,14 +154,19 @@ void order_cells_for_locality(StoreData& data) {
     order_equal_keys_by_vertices(outer_keys, outer_order, data.cell_vertices);
     std::copy(inner_order.begin(), inner_order.end(), old_of_new.begin());
     std::copy(outer_order.begin(), outer_order.end(), old_of_new.begin() + inner);
-    // The inner cell nearest the centre (the first in this order among equally near ones) to slot 0.
-    uint32_t nearest = 0;
-    for (uint32_t n = 1; n < inner; ++n)
-        if (distance[old_of_new[n]] < distance[old_of_new[nearest]]) nearest = n;
-    if (inner > 0) std::swap(old_of_new[0], old_of_new[nearest]);
-
     std::vector<uint32_t> new_of_old(cells);
     for (uint32_t n = 0; n < cells; ++n) new_of_old[old_of_new[n]] = n;
+    // The inner cell nearest the centre (the first in this order among equally near ones) to slot 0.
+    // Found among the nearest cells noted above: a search in the new order would read the
+    // distances in a random order.
+    if (inner > 0) {
+        uint32_t nearest = new_of_old[nearest_cells[0]];
+        for (uint32_t c : nearest_cells) nearest = std::min(nearest, new_of_old[c]);
+        const uint32_t first = old_of_new[0], moved = old_of_new[nearest];
+        std::swap(old_of_new[0], old_of_new[nearest]);
+        new_of_old[first] = nearest;
+        new_of_old[moved] = 0;
+    }
 
     // Scattered in the old order: the reads stay sequential and the scattered writes do not stall
     // (a gather in the new order waited on a cache miss per cell: half of this function's time).
