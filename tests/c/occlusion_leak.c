@@ -51,7 +51,7 @@ void test_occlusion_and_leak_control(void) {
     EXPECT_OK(tp_store_build(probes, 0, NULL, 0, 125, NULL, &plain));
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
-    CHECK(info.format_version == 5 && info.occlusion_lights == 1 && info.leak_edges > 0);
+    CHECK(info.format_version == 6 && info.occlusion_lights == 1 && info.leak_edges > 0);
     CHECK((info.flags & ~(uint32_t)(TP_BUILD_NO_EXTRAPOLATION | TP_BUILD_INDEX32 | TP_BUILD_COMPACT)) == 0);
     EXPECT_OK(tp_store_interpolate_occlusion(store, behind, NULL, sh, visible));
     CHECK(visible[0] == 0.0f && visible[1] == 1.0f && visible[3] == 1.0f);
@@ -216,7 +216,7 @@ void test_occlusion_bake_and_blend(void) {
         tp_scene_release(scene);
         return;
     }
-    CHECK(info_of(store).occlusion_lights == 3 && info_of(store).leak_edges == 0 && info_of(store).format_version == 5);
+    CHECK(info_of(store).occlusion_lights == 3 && info_of(store).leak_edges == 0 && info_of(store).format_version == 6);
     {
         float queries[64 * 3], batch_sh[64 * 27], batch_occ[64 * 8], one_sh[27], plain_sh[27], occ[4];
         int32_t hint = -1;

@@ -127,7 +127,7 @@ void test_compact_layout(void) {
         }
         fast_info = info_of(fast);
         compact_info = info_of(compact);
-        CHECK(fast_info.format_version == 5 && compact_info.format_version == 5);
+        CHECK(fast_info.format_version == 6 && compact_info.format_version == 6);
         CHECK(fast_info.layout == TP_LAYOUT_FAST && compact_info.layout == TP_LAYOUT_COMPACT);
         CHECK(fast_info.flags == extra);
         CHECK(compact_info.flags == (extra | TP_BUILD_COMPACT));

@@ -41,7 +41,7 @@ def test_build_from_csv_then_info_and_query(tmp_path):
     info = json.loads(run("info", store_path, "--json").stdout)
     assert info["probes"] == 40 and info["cells"] == info["inner_cells"] + info["outer_cells"]
     assert info["bytes"] == store_path.stat().st_size
-    assert info["format_version"] == 5 and info["layout"] == "fast"
+    assert info["format_version"] == 6 and info["layout"] == "fast"
     text = run("info", store_path).stdout
     assert "probes:" in text and "index_bits:" in text and 'layout:         "fast"' in text
 
