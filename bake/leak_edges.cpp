@@ -109,6 +109,9 @@ size_t add_leak_edges(const Scene& scene, StoreData& data, uint32_t threads, con
     run_jobs(pairs.size(), threads, [&](size_t k) {
         const float* a = &data.positions[3 * size_t(pairs[k].first)];
         const float* b = &data.positions[3 * size_t(pairs[k].second)];
+        double squared = 0;
+        for (int q = 0; q < 3; ++q) squared += (double(b[q]) - a[q]) * (double(b[q]) - a[q]);
+        if (!(squared <= kLeakLongestPair * kLeakLongestPair)) return;  // stays unblocked
         hits[k] = {first_crossing(caster, a, b), first_crossing(caster, b, a)};
         if ((hits[k].first.fraction >= 0 || hits[k].second.fraction >= 0) && !separated(caster, a, b))
             hits[k] = {Crossing(), Crossing()};

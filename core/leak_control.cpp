@@ -74,8 +74,9 @@ void check_leak_planes(const Store::Impl& s) {
 
 void weigh_by_visibility(const Store::Impl& s, const float local[3], Location& loc) {
     if (loc.cell < 0 || !s.leak_cells.get()[loc.cell]) return;
-    // Per slot: the product of the factors of the pairs that hide its probe from the query.
-    double visible[4] = {1, 1, 1, 1};
+    // Per slot: the share of the query's weight held by the partners its probe is hidden from, each over
+    // where its wall crosses their edge.
+    double hidden[4] = {0, 0, 0, 0};
     bool blocked = false;
     for (int i = 0; i < 4; ++i) {
         for (int j = i + 1; j < 4; ++j) {
@@ -90,7 +91,7 @@ void weigh_by_visibility(const Store::Impl& s, const float local[3], Location& l
                 if (side_of(*edge, side, local) > 0) continue;  // in front
                 // Behind this probe's wall: hidden by the partner's weight over where the wall crosses.
                 const double share = double(loc.weights[slots[1 - side]]) * 65535.0 / double(edge->reach[side]);
-                visible[slots[side]] *= 1.0 - (share < 0 ? 0 : (share > 1 ? 1 : share));
+                if (share > 0) hidden[slots[side]] += share;
             }
         }
     }
@@ -100,7 +101,8 @@ void weigh_by_visibility(const Store::Impl& s, const float local[3], Location& l
     if (!(total > 0)) return;  // weights of a validated store sum to 1; kept for safety
     double scaled[4], scaled_total = 0;
     for (int k = 0; k < 4; ++k) {
-        scaled[k] = double(loc.weights[k]) * (visible[k] + kLeakFloor);
+        const double visible = hidden[k] < 1 ? 1 - hidden[k] : 0.0;
+        scaled[k] = double(loc.weights[k]) * (visible + kLeakFloor);
         scaled_total += scaled[k];
     }
     // Divided last, so that a query at a probe (one scaled weight equal to the total) gets exactly 1.

@@ -7,15 +7,17 @@
 // the query is not strictly in front of that probe's plane, decided exactly (the sign of N . q - offset
 // with integer N: no rounding can move the plane). A probe on the query's side keeps its weight.
 //
-// How much: hidden by the pair (a, b) with the query behind a's plane, a's weight is multiplied by
-// 1 - min(1, w_b / reach_a), where w_b is b's barycentric weight and reach_a the fraction of the edge
-// from a to a's plane. On the edge itself the query is behind a's plane exactly when w_b >= reach_a,
-// so a is dropped entirely there: the answer steps from a's value to b's at the wall. Inside the cell
-// the share fades to nothing where w_b does: on the facet without b. So the weights are continuous
+// How much: a's weight is multiplied by 1 - min(1, sum of w_b / reach_a(b)) over the blocked partners b
+// in the cell with the query behind a's plane of the pair (a, b), where w_b is b's barycentric weight and
+// reach_a(b) the fraction of the edge from a to that plane: the share of the query's weight held by the
+// probes a cannot see, each measured against where its wall stands. On the edge itself the query is
+// behind a's plane exactly when w_b >= reach_a(b), so a is dropped entirely there: the answer steps from
+// a's value to b's at the wall. Inside the cell each term fades to nothing where w_b does: on the facet
+// without b. So the weights are continuous
 // across every facet (the facet's own probes and blocked pairs, and their planes, are the same on both
 // sides; a pair with a probe off the facet changes nothing there), between a blocked cell and an
 // unblocked one too, and jump only where the query crosses a wall's plane inside a cell that holds the
-// wall's pair. Several pairs hide a probe by the product of their factors. Cells without a blocked pair
+// wall's pair. Cells without a blocked pair
 // are not touched at all (bit for bit); a query at a probe keeps weight exactly 1 there (a probe is
 // strictly in front of its own planes, which the loader checks). The data is 24 bytes per blocked edge;
 // the cost two exact side tests per blocked pair of the query's cell. (Per-probe depth maps, as DDGI

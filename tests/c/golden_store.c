@@ -432,7 +432,7 @@ void test_golden_store_bad_blobs(void) {
     repair_checksum(bytes, size);
     EXPECT_STATUS(tp_store_load(bytes, size, &store), TP_ERROR_VERSION);
     CHECK(strstr(tp_last_error(), "rebuild") != NULL && mentions_number(tp_last_error(), 7));
-    bytes[8] = 5;
+    bytes[8] = 6;
     repair_checksum(bytes, size);
     EXPECT_OK(tp_store_load(bytes, size, &store));
     tp_store_release(store);

@@ -479,8 +479,8 @@ def test_older_format_blobs_are_refused_with_a_version_error():
     positions, sh = random_set(50, 241)
     for compact in (False, True):
         blob = bytearray(Store.build(positions, sh, compact=compact).to_bytes())
-        assert struct.unpack_from("<I", blob, 8)[0] == 5
-        for version in (4, 3, 2, 1, 6, 99):
+        assert struct.unpack_from("<I", blob, 8)[0] == 6
+        for version in (5, 4, 3, 2, 1, 7, 99):
             old = bytearray(blob)
             struct.pack_into("<I", old, 8, version)  # nothing else fixed: not even the checksum
             with pytest.raises(Error) as raised:

@@ -215,8 +215,8 @@ TEST_CASE("leak: the edges crossing a wall are found, each side's plane the wall
 
 TEST_CASE("leak: inside a blocked cell the weights on each side of the wall are the reference's", "[leak]") {
     // The slow reference: the plain barycentric weights w; a probe k behind the wall from the query (on the
-    // other side of x = kWallX) is kept by the product over its blocked partners j on the query's side of
-    // 1 - min(1, w_j / reach_k) (reach_k: the fraction of the edge from k to the wall); every probe then by
+    // other side of x = kWallX) is kept by 1 - min(1, sum of w_j / reach_k(j)) over its blocked partners j on
+    // the query's side (reach_k(j): the fraction of the edge from k to the wall); every probe then by
     // (kept + kLeakFloor), renormalised to sum 1. A probe on the query's side keeps its weight (its share
     // grows by the common renormalisation only). Inverting the side test, or testing the wrong probe's
     // plane, fails this.
@@ -244,8 +244,9 @@ TEST_CASE("leak: inside a blocked cell the weights on each side of the wall are 
                 if (!blocked(s.leak_data, k, j)) continue;
                 const double xj = s.leak->probe_position(j)[0] + origin[0];
                 const double reach = (xk - kWallX) / (xk - xj);
-                kept[k] *= 1 - std::fmin(1.0, wj / reach);
+                kept[k] -= wj / reach;
             }
+            kept[k] = std::fmax(0.0, kept[k]);
         }
         double total = 0;
         for (const auto& [k, wk] : w) total += wk * (kept[k] + kLeakFloor);
@@ -532,9 +533,10 @@ TEST_CASE("leak: the blocked pairs do not depend on the thread count, and the bu
     }
 }
 
-TEST_CASE("leak: pairs across the wall are flagged at any distance", "[leak]") {
-    // Two probes either side of the wall at each distance, two more off to the side so that there is a
-    // volume: the side test judges a large cell as a small one, so the wall-crossing pair is always flagged.
+TEST_CASE("leak: pairs farther apart than kLeakLongestPair are not flagged, nearer ones across the wall are",
+          "[leak]") {
+    // Two probes either side of the wall at each distance, two more off to the side so that there is a volume:
+    // the wall-crossing pair is flagged exactly when it is at most kLeakLongestPair apart.
     const Scene scene = wall_scene();
     for (double half : {0.5, 1.4, 1.6, 3.0}) {
         const double d = 2 * half;
@@ -553,7 +555,7 @@ TEST_CASE("leak: pairs across the wall are flagged at any distance", "[leak]") {
         REQUIRE(a < 4);
         REQUIRE(b < 4);
         INFO("pair " << d << " apart");
-        CHECK(blocked(data, a, b));
+        CHECK(blocked(data, a, b) == (d <= kLeakLongestPair));
     }
 }
 
