@@ -16,10 +16,11 @@ namespace tetprobe {
 // lie beside it (see add_leak_edges).
 constexpr double kLeakSeparationOffset = 0.15;
 // Pairs farther apart than this (world units, metres by the scene's convention) are not flagged. The side test
-// decides which side of a wall a query is on exactly, yet on the real levels hiding probes in the large cells
-// of sparse sets (50-200 probes) and in the long cells of all 1 m candidates still costs up to 4 % and 7 %:
-// there a correctly hidden probe is often a better estimate than the far ones left on the query's side. A
-// stopgap: the scale it stands for (how far a probe's light stays representative) is not in the store.
+// decides which side of a wall a query is on exactly, yet without this limit hiding probes in the large cells
+// of sparse sets and in the long cells among all 1 m candidates cost up to 7.8 % on the real levels (wrackdm17
+// at 400 probes; 4.5 % at 50 on oa_bases3, 6.7 % with all of oa_bases3's candidates): there a probe behind the
+// wall is often a better estimate than the far ones left on the query's side. A stopgap: the scale it stands
+// for (how far a probe's light stays representative) is not in the store.
 constexpr double kLeakLongestPair = 3.0;
 
 // Casts a ray each way along every cell edge (Embree, local coordinates, on up to `threads` threads,
