@@ -2,6 +2,7 @@
 
 #include "bake/parallel_jobs.h"
 #include "bake/ray_caster.h"
+#include "core/leak_plane.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,8 +13,15 @@ namespace tetprobe {
 
 namespace {
 
-// The first hit from `from` towards `to` as a fraction of their distance, or -1 if none.
-double first_hit(const RayCaster& caster, const float from[3], const float to[3]) {
+// The first surface from `from` towards `to`: its distance as a fraction of theirs (-1 if none) and its
+// triangle's normal (not unit, either orientation).
+struct Crossing {
+    double fraction = -1;
+    double normal[3] = {0, 0, 0};
+};
+
+Crossing first_crossing(const RayCaster& caster, const float from[3], const float to[3]) {
+    Crossing crossing;
     double d[3], length = 0;
     for (int k = 0; k < 3; ++k) {
         d[k] = double(to[k]) - from[k];
@@ -22,13 +30,29 @@ double first_hit(const RayCaster& caster, const float from[3], const float to[3]
     length = std::sqrt(length);
     // Embree's rays must start within +-1.8e18 and have a finite reach (it asserts otherwise): a pair
     // beyond that range is not tested (and stays unblocked).
-    if (!(length > 0) || !(length < kLargestRayCoordinate)) return -1;
+    if (!(length > 0) || !(length < kLargestRayCoordinate)) return crossing;
     for (int k = 0; k < 3; ++k)
-        if (!(std::fabs(from[k]) < kLargestRayCoordinate)) return -1;
+        if (!(std::fabs(from[k]) < kLargestRayCoordinate)) return crossing;
     const float direction[3] = {float(d[0] / length), float(d[1] / length), float(d[2] / length)};
     RayHit hit;
-    if (!caster.intersect(from, direction, 0.0f, float(length), &hit)) return -1;
-    return std::min(1.0, double(hit.distance) / length);
+    if (!caster.intersect(from, direction, 0.0f, float(length), &hit)) return crossing;
+    crossing.fraction = std::min(1.0, double(hit.distance) / length);
+    const std::vector<float>& v = caster.local_vertices(hit.mesh);
+    const std::vector<uint32_t>& indices = caster.local_indices(hit.mesh);
+    const uint32_t* tri = &indices[3 * size_t(hit.triangle)];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) {
+        e1[k] = double(v[3 * tri[1] + k]) - v[3 * tri[0] + k];
+        e2[k] = double(v[3 * tri[2] + k]) - v[3 * tri[0] + k];
+    }
+    crossing.normal[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    crossing.normal[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    crossing.normal[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    return crossing;
+}
+
+double first_hit(const RayCaster& caster, const float from[3], const float to[3]) {
+    return first_crossing(caster, from, to).fraction;
 }
 
 // Whether a surface separates a and b rather than grazes their segment: the four segments parallel to
@@ -79,34 +103,53 @@ size_t add_leak_edges(const Scene& scene, StoreData& data, uint32_t threads, con
 
     const RayCaster caster(scene, data.origin);
     const uint32_t probes = data.probe_count();
-    // The first hit from each end of every pair (none for a pair no surface separates), found on worker
-    // threads; kept in the pairs' order.
-    std::vector<std::pair<double, double>> hits(pairs.size());
+    // The first surface from each end of every pair (none for a pair no surface separates), found on
+    // worker threads; kept in the pairs' order.
+    std::vector<std::pair<Crossing, Crossing>> hits(pairs.size());
     run_jobs(pairs.size(), threads, [&](size_t k) {
         const float* a = &data.positions[3 * size_t(pairs[k].first)];
         const float* b = &data.positions[3 * size_t(pairs[k].second)];
         double squared = 0;
         for (int q = 0; q < 3; ++q) squared += (double(b[q]) - a[q]) * (double(b[q]) - a[q]);
-        if (!(squared <= kLeakLongestPair * kLeakLongestPair)) {
-            hits[k] = {-1.0, -1.0};
-            return;
-        }
-        hits[k] = {first_hit(caster, a, b), first_hit(caster, b, a)};
-        if ((hits[k].first >= 0 || hits[k].second >= 0) && !separated(caster, a, b)) hits[k] = {-1.0, -1.0};
+        if (!(squared <= kLeakLongestPair * kLeakLongestPair)) return;  // stays unblocked
+        hits[k] = {first_crossing(caster, a, b), first_crossing(caster, b, a)};
+        if ((hits[k].first.fraction >= 0 || hits[k].second.fraction >= 0) && !separated(caster, a, b))
+            hits[k] = {Crossing(), Crossing()};
     }, progress, "leak control");
     std::vector<LeakEdge> edges;
     std::vector<uint32_t> owners;
     for (size_t k = 0; k < pairs.size(); ++k) {
         const auto& pair = pairs[k];
-        const double from_a = hits[k].first, from_b = hits[k].second;
-        if (from_a < 0 && from_b < 0) continue;
-        // The wall spans [near, far] along a->b; a hit found one way only is a wall of no thickness.
-        double near = from_a >= 0 ? from_a : 1.0 - from_b, far = from_b >= 0 ? 1.0 - from_b : from_a;
-        if (near > far) std::swap(near, far);
+        Crossing from[2] = {hits[k].first, hits[k].second};
+        if (from[0].fraction < 0 && from[1].fraction < 0) continue;
+        // A surface found one way only (one-sided geometry seen from behind is still hit; a ray starting
+        // inside a solid is not) is a wall of no thickness: the same plane from both probes.
+        for (int side = 0; side < 2; ++side)
+            if (from[side].fraction < 0) {
+                from[side] = from[1 - side];
+                from[side].fraction = 1.0 - from[side].fraction;
+            }
+        const float* ends[2] = {&data.positions[3 * size_t(pair.first)], &data.positions[3 * size_t(pair.second)]};
         LeakEdge edge;
         edge.partner = pair.second;
-        edge.start = float(std::max(0.0, near - kLeakRampMargin));
-        edge.end = float(std::min(1.0, far + kLeakRampMargin));
+        bool placed = true;
+        for (int side = 0; side < 2 && placed; ++side) {
+            const float* own = ends[side];
+            const float* other = ends[1 - side];
+            const double t = from[side].fraction;
+            double crossing[3];
+            for (int q = 0; q < 3; ++q) crossing[q] = double(own[q]) + t * (double(other[q]) - own[q]);
+            int16_t code[2];
+            float offset;
+            placed = make_leak_plane(from[side].normal, crossing, own, other, code, &offset);
+            edge.normal[side][0] = code[0];
+            edge.normal[side][1] = code[1];
+            edge.offset[side] = offset;
+            // Where the plane crosses the segment, rounded to 1/65535 and kept above zero (a wall touching
+            // the probe still hides it only as the partner's weight grows).
+            edge.reach[side] = uint16_t(std::max(1.0, std::min(65535.0, std::round(t * 65535.0))));
+        }
+        if (!placed) continue;  // probes too close for any float plane between them
         edges.push_back(edge);
         owners.push_back(pair.first);
     }

@@ -1,12 +1,23 @@
 #include "core/leak_control.h"
 
+#include "core/error.h"
+#include "core/leak_plane.h"
+
 #include <algorithm>
+#include <string>
 
 namespace tetprobe {
 
 namespace {
 
-// The ramp of the blocked pair (a, b), a < b, or null when they see each other.
+// Exact side of `point` against one side's wall plane of a blocked edge (its fields copied out of the
+// packed record).
+int side_of(const LeakEdge& e, int side, const float point[3]) {
+    const int16_t code[2] = {e.normal[side][0], e.normal[side][1]};
+    return leak_plane_side(code, e.offset[side], point);
+}
+
+// The wall planes of the blocked pair (a, b), a < b, or null when they see each other.
 const LeakEdge* blocked_edge(const Store::Impl& s, uint32_t a, uint32_t b) {
     const uint32_t end = s.leak_offsets[a + 1];
     for (uint32_t i = s.leak_offsets[a]; i < end; ++i) {
@@ -15,11 +26,6 @@ const LeakEdge* blocked_edge(const Store::Impl& s, uint32_t a, uint32_t b) {
         if (partner > b) break;  // increasing within a list
     }
     return nullptr;
-}
-
-double smoothstep(double x) {
-    x = x < 0 ? 0 : (x > 1 ? 1 : x);
-    return x * x * (3 - 2 * x);
 }
 
 template <class Index>
@@ -52,11 +58,25 @@ void mark_blocked_cells(Store::Impl& s) {
         mark_cells<uint16_t>(s);
 }
 
-void weigh_by_visibility(const Store::Impl& s, Location& loc) {
+void check_leak_planes(const Store::Impl& s) {
+    for (uint32_t a = 0; a < s.probe_count; ++a) {
+        for (uint32_t i = s.leak_offsets[a]; i < s.leak_offsets[a + 1]; ++i) {
+            const LeakEdge& e = s.leak_edges[i];
+            const float* pa = s.positions + 3 * size_t(a);
+            const float* pb = s.positions + 3 * size_t(e.partner);
+            if (side_of(e, 0, pa) <= 0 || side_of(e, 0, pb) >= 0 || side_of(e, 1, pb) <= 0 || side_of(e, 1, pa) >= 0)
+                throw Error(Status::invalid_blob, "invalid store blob: leak_edges[" + std::to_string(i) +
+                                                      "] has a wall plane that does not separate probes " +
+                                                      std::to_string(a) + " and " + std::to_string(e.partner));
+        }
+    }
+}
+
+void weigh_by_visibility(const Store::Impl& s, const float local[3], Location& loc) {
     if (loc.cell < 0 || !s.leak_cells.get()[loc.cell]) return;
-    // Per slot: the weight of its blocked partners in the cell, and their ramps (oriented away from
-    // the slot's probe) summed with those weights.
-    double behind[4] = {0, 0, 0, 0}, ramp_start[4] = {0, 0, 0, 0}, ramp_end[4] = {0, 0, 0, 0};
+    // Per slot: the share of the query's weight held by the partners its probe is hidden from, each over
+    // where its wall crosses their edge.
+    double hidden[4] = {0, 0, 0, 0};
     bool blocked = false;
     for (int i = 0; i < 4; ++i) {
         for (int j = i + 1; j < 4; ++j) {
@@ -66,13 +86,13 @@ void weigh_by_visibility(const Store::Impl& s, Location& loc) {
             const LeakEdge* edge = blocked_edge(s, loc.probes[low], loc.probes[high]);
             if (!edge) continue;
             blocked = true;
-            const double w_low = loc.weights[low], w_high = loc.weights[high];
-            behind[low] += w_high;
-            ramp_start[low] += w_high * edge->start;
-            ramp_end[low] += w_high * edge->end;
-            behind[high] += w_low;
-            ramp_start[high] += w_low * (1.0 - edge->end);
-            ramp_end[high] += w_low * (1.0 - edge->start);
+            const int slots[2] = {low, high};
+            for (int side = 0; side < 2; ++side) {
+                if (side_of(*edge, side, local) > 0) continue;  // in front
+                // Behind this probe's wall: hidden by the partner's weight over where the wall crosses.
+                const double share = double(loc.weights[slots[1 - side]]) * 65535.0 / double(edge->reach[side]);
+                if (share > 0) hidden[slots[side]] += share;
+            }
         }
     }
     if (!blocked) return;
@@ -81,16 +101,7 @@ void weigh_by_visibility(const Store::Impl& s, Location& loc) {
     if (!(total > 0)) return;  // weights of a validated store sum to 1; kept for safety
     double scaled[4], scaled_total = 0;
     for (int k = 0; k < 4; ++k) {
-        double visible = 1;
-        if (behind[k] > 0) {
-            // How far the query has gone towards the probes this one cannot see (0 at this probe, 1 at
-            // them), against the weighted ramp: past it, the query is on their side of the wall.
-            const double t = behind[k] / total;
-            const double start = ramp_start[k] / behind[k], end = ramp_end[k] / behind[k];
-            // Every ramp is wider than zero, but their average may round to none: a step then.
-            const double x = end > start ? (t - start) / (end - start) : (t > start ? 1.0 : 0.0);
-            visible = 1.0 - smoothstep(x);
-        }
+        const double visible = hidden[k] < 1 ? 1 - hidden[k] : 0.0;
         scaled[k] = double(loc.weights[k]) * (visible + kLeakFloor);
         scaled_total += scaled[k];
     }

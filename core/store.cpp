@@ -166,7 +166,10 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     // length (check_records).
     if (h.layout != kLayoutRebuilt || s.dimension < 3) validate_cell_records(s);
     decode_normals(s, section(kSectionNormals));
-    if (s.leak_offsets) mark_blocked_cells(s);
+    if (s.leak_offsets) {
+        check_leak_planes(s);
+        mark_blocked_cells(s);
+    }
     // The query kernels for this store and CPU, once (store_queries.cpp calls only these).
     const InstructionSet instruction_set = detect_instruction_set();
     s.locate = choose_locate_kernel(s, instruction_set);

@@ -1,4 +1,4 @@
-// The store blob, format version 5: one contiguous, position-independent, little-endian buffer.
+// The store blob, format version 6: one contiguous, position-independent, little-endian buffer.
 // This file is the single description of the layout; the writer and the loader both follow it
 // (docs/store_format.md says the same for users).
 //
@@ -74,13 +74,16 @@
 // - optional scene data (format 4 on). A section a flag does not announce is empty (size 0).
 //   occlusion (kFlagOcclusion): per probe 4 bytes, byte i = round(255 * fraction of mixed light i the
 //   probe sees) for i < header.occlusion_lights (1..4); the unused bytes are 255 (unshadowed).
-//   leak control (kFlagLeakControl): probe pairs of a cell edge that cannot see each other (geometry
-//   crosses the segment between them), as lists per probe: leak_offsets[probe_count + 1] (uint32,
-//   leak_offsets[0] = 0, non-decreasing, leak_offsets[probe_count] = header.leak_edge_count) and
-//   leak_edges (LeakEdge). The edges of probe a are leak_edges[leak_offsets[a], leak_offsets[a+1]),
-//   each naming a partner b > a (strictly increasing within a list) and the ramp [start, end] with
-//   0 <= start < end <= 1: the stretch of the segment a->b (0 at a, 1 at b) over which visibility
-//   passes from a to b (the wall crossing widened; see core/leak_control.h).
+//   leak control (kFlagLeakControl, format 6 on): probe pairs of a cell edge that cannot see each other
+//   (geometry crosses the segment between them), as lists per probe: leak_offsets[probe_count + 1]
+//   (uint32, leak_offsets[0] = 0, non-decreasing, leak_offsets[probe_count] = header.leak_edge_count) and
+//   leak_edges (LeakEdge). The edges of probe a are leak_edges[leak_offsets[a], leak_offsets[a+1]), each
+//   naming a partner b > a (strictly increasing within a list) and, for each of its two probes (side 0:
+//   a, side 1: b), the plane of the first surface the segment meets from that probe: the octahedral code
+//   of an integer normal N facing the probe (core/leak_plane.h) and an offset (finite float32), the plane
+//   being N . x = offset in local coordinates, with the probe strictly in front (N . p > offset) and its
+//   partner strictly behind, exactly; and reach (uint16, 1..65535): where that plane crosses the segment,
+//   as reach / 65535 of the way from the probe to its partner (see core/leak_control.h).
 #pragma once
 
 #include <cstddef>
@@ -89,7 +92,7 @@
 namespace tetprobe {
 
 constexpr char kStoreMagic[8] = {'T', 'E', 'T', 'P', 'R', 'O', 'B', 'E'};
-constexpr uint32_t kStoreFormatVersion = 5;
+constexpr uint32_t kStoreFormatVersion = 6;
 constexpr size_t kSectionAlignment = 16;
 
 // Header flags. The C ABI's TP_BUILD_* bits are these same values where they share a meaning (checked
@@ -174,10 +177,13 @@ struct StoreHeader {
     uint32_t hull_probe_count;  // probes with a stored normal (those of the outer cells)
     uint32_t reserved;          // 0
 };
-// One probe pair that cannot see each other (in the list of the lower probe, a).
+// One probe pair that cannot see each other (in the list of the lower probe, a); side 0 is a's wall
+// plane, side 1 b's (see above).
 struct LeakEdge {
     uint32_t partner;           // b > a
-    float start, end;           // ramp along a->b, 0 <= start < end <= 1
+    int16_t normal[2][2];       // octahedral code of each side's integer plane normal, facing its probe
+    float offset[2];            // each side's plane: N . x = offset (local)
+    uint16_t reach[2];          // where each side's plane crosses the segment, from its probe, / 65535
 };
 struct SectionEntry {
     uint64_t offset;
@@ -186,7 +192,7 @@ struct SectionEntry {
 #pragma pack(pop)
 
 static_assert(sizeof(StoreHeader) == 144, "header layout");
-static_assert(sizeof(LeakEdge) == 12, "leak edge layout");
+static_assert(sizeof(LeakEdge) == 24, "leak edge layout");
 constexpr size_t kHeaderSize = sizeof(StoreHeader) + kSectionCount * sizeof(SectionEntry);
 constexpr size_t kChecksumOffset = offsetof(StoreHeader, checksum);
 // Where the format version sits in every format (so an older blob is told apart from a corrupt one).

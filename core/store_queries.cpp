@@ -28,7 +28,7 @@ void answer(const Store::Impl& s, size_t count, const float (*local)[3], const i
         s.locate.locate_batch(s, count, local, hints, out);
     if (s.leak_offsets)
         for (size_t i = 0; i < count; ++i)
-            if (out[i].status == Status::ok) weigh_by_visibility(s, out[i]);
+            if (out[i].status == Status::ok) weigh_by_visibility(s, local[i], out[i]);
 }
 
 // One query at a world position, answered in loc (a default Location).

@@ -239,7 +239,8 @@ void check_maps(const uint8_t* data, const StoreHeader& h, const SectionEntry ta
 }
 
 // Occlusion bytes of unused channels, and the leak lists: offsets spanning the edges, partners above
-// their probe, increasing, in range; ramps inside [0, 1] and not empty.
+// their probe, increasing, in range; wall plane offsets finite, reaches above 0 (that the planes separate
+// their pairs is checked once the positions are decoded, core/leak_control.h).
 void check_scene_data(const uint8_t* data, const StoreHeader& h, const SectionEntry table[kSectionCount]) {
     if (h.flags & kFlagOcclusion) {
         const uint8_t* occlusion = data + table[kSectionOcclusion].offset;
@@ -261,8 +262,12 @@ void check_scene_data(const uint8_t* data, const StoreHeader& h, const SectionEn
                 reject(at("leak_edges", i) + " names partner " + std::to_string(e.partner) + " of probe " +
                        std::to_string(a) + " (must be above it and a probe)");
             if (i > offsets[a] && e.partner <= edges[i - 1].partner) reject(at("leak_edges", i) + " is out of order");
-            if (!(e.start >= 0.0f && e.start < e.end && e.end <= 1.0f))
-                reject(at("leak_edges", i) + " has a ramp outside 0 <= start < end <= 1");
+            for (int side = 0; side < 2; ++side) {
+                if (!std::isfinite(e.offset[side]))
+                    reject(at("leak_edges", i) + " has a wall plane offset that is not finite (side " + std::to_string(side) + ")");
+                if (e.reach[side] == 0)
+                    reject(at("leak_edges", i) + " has a wall plane at its probe (reach 0, side " + std::to_string(side) + ")");
+            }
         }
     }
 }

@@ -1,4 +1,4 @@
-// How a store keeps its data (format 5): the SH encoding and layout chosen at build, and the bytes of each
+// How a store keeps its data (format 6): the SH encoding and layout chosen at build, and the bytes of each
 // part of the blob (ProbeStore.Info).
 namespace TetProbe
 {

@@ -3,10 +3,10 @@
  * library on every platform): their answers are known exactly, files round-trip, bad blobs and file
  * errors fail with the documented status.
  *
- * tiny_store_v5.bin: one tetrahedron with corners origin + {0, e_x, e_y, e_z}, origin (10, -20, 30.5),
+ * tiny_store_v6.bin: one tetrahedron with corners origin + {0, e_x, e_y, e_z}, origin (10, -20, 30.5),
  * built without extrapolation from five input probes (input 3 merged into input 1); store probe j
  * (inputs 0, 1, 2, 4) holds SH coefficient k = ((27 j + k) mod 23) / 4 - 2, exact in half precision.
- * tiny_store_<encoding>_<layout>[_quantized]_v5.bin: the same store in each SH encoding, layout and
+ * tiny_store_<encoding>_<layout>[_quantized]_v6.bin: the same store in each SH encoding, layout and
  * position encoding, its SH a non-negative radiance (golden_radiance_sh); test_store_blob.cpp writes them.
  */
 #include "harness.h"
@@ -52,7 +52,7 @@ static tp_store* load_golden(const char* name) {
 }
 
 void test_golden_store_answers(void) {
-    tp_store* store = load_golden("tiny_store_v5.bin");
+    tp_store* store = load_golden("tiny_store_v6.bin");
     tp_store_info info;
     float out[27], weights[4], p[3];
     uint32_t probes[4];
@@ -61,7 +61,7 @@ void test_golden_store_answers(void) {
     memset(&info, 0, sizeof info);
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
-    CHECK(info.format_version == 5 && info.dimension == 3);
+    CHECK(info.format_version == 6 && info.dimension == 3);
     CHECK(info.probes == 4 && info.input_probes == 5 && info.merged_probes == 1);
     CHECK(info.cells == 1 && info.inner_cells == 1 && info.outer_cells == 0);
     CHECK(info.index_bits == 16 && info.flags == TP_BUILD_NO_EXTRAPOLATION);
@@ -132,7 +132,7 @@ void test_golden_store_answers(void) {
     tp_store_release(store);
 
     /* The second golden blob has outer cells: far outside is answered from them, inside from the cell. */
-    store = load_golden("tetrahedron_outer_cells_v5.bin");
+    store = load_golden("tetrahedron_outer_cells_v6.bin");
     if (store) {
         static const float directions[6][3] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         tp_location location;
@@ -182,7 +182,7 @@ void test_golden_store_queries_and_errors(void) {
     static int32_t single_hints[M], batch_hints[M], padded_hints[2 * M];
     static uint32_t single_probes[4 * M], batch_probes[4 * M];
     static float single_weights[4 * M], batch_weights[4 * M];
-    tp_store* store = load_golden("tiny_store_v5.bin");
+    tp_store* store = load_golden("tiny_store_v6.bin");
     tp_batch_options options;
     tp_location location;
     tp_store_info info;
@@ -300,7 +300,7 @@ void test_golden_store_files(void) {
     static const char* const unicode_name = "harness_\xc3\xa9t\xc3\xa9_\xe5\x85\x89.tpb";
     static const char* const names[2] = {"harness_golden.tpb", NULL};
     size_t size = 0;
-    unsigned char* golden = read_golden("tiny_store_v5.bin", &size);
+    unsigned char* golden = read_golden("tiny_store_v6.bin", &size);
     tp_store *store = NULL, *copy = NULL;
     const void* blob;
     size_t blob_size = 0;
@@ -387,7 +387,7 @@ void test_golden_store_bad_blobs(void) {
                                          "tetrahedron_outer_cells_v4.bin", "tiny_store_scene_v4.bin"};
     static const unsigned long older_version[7] = {2, 2, 3, 3, 4, 4, 4};
     size_t size = 0, cut, at;
-    unsigned char* bytes = read_golden("tiny_store_v5.bin", &size);
+    unsigned char* bytes = read_golden("tiny_store_v6.bin", &size);
     tp_store* store = NULL;
     int refused = 1, safe = 1, f;
     if (!bytes) return;
@@ -432,7 +432,7 @@ void test_golden_store_bad_blobs(void) {
     repair_checksum(bytes, size);
     EXPECT_STATUS(tp_store_load(bytes, size, &store), TP_ERROR_VERSION);
     CHECK(strstr(tp_last_error(), "rebuild") != NULL && mentions_number(tp_last_error(), 7));
-    bytes[8] = 5;
+    bytes[8] = 6;
     repair_checksum(bytes, size);
     EXPECT_OK(tp_store_load(bytes, size, &store));
     tp_store_release(store);
@@ -457,14 +457,14 @@ void test_golden_store_encodings(void) {
         const char* file;
         uint32_t encoding, layout, quantized;
     } goldens[8] = {
-        {"tiny_store_half_compact_quantized_v5.bin", TP_SH_ENCODING_HALF, TP_LAYOUT_COMPACT, 1},
-        {"tiny_store_unorm8_fast_v5.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_FAST, 0},
-        {"tiny_store_unorm8_compact_quantized_v5.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_COMPACT, 1},
-        {"tiny_store_half_l1_fast_v5.bin", TP_SH_ENCODING_HALF_L1, TP_LAYOUT_FAST, 0},
-        {"tiny_store_half_l1_compact_quantized_v5.bin", TP_SH_ENCODING_HALF_L1, TP_LAYOUT_COMPACT, 1},
-        {"tiny_store_unorm8_l1_fast_quantized_v5.bin", TP_SH_ENCODING_UNORM8_L1, TP_LAYOUT_FAST, 1},
-        {"tiny_store_unorm8_l1_compact_v5.bin", TP_SH_ENCODING_UNORM8_L1, TP_LAYOUT_COMPACT, 0},
-        {"tiny_store_unorm8_rebuilt_quantized_v5.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_REBUILT, 1}};
+        {"tiny_store_half_compact_quantized_v6.bin", TP_SH_ENCODING_HALF, TP_LAYOUT_COMPACT, 1},
+        {"tiny_store_unorm8_fast_v6.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_FAST, 0},
+        {"tiny_store_unorm8_compact_quantized_v6.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_COMPACT, 1},
+        {"tiny_store_half_l1_fast_v6.bin", TP_SH_ENCODING_HALF_L1, TP_LAYOUT_FAST, 0},
+        {"tiny_store_half_l1_compact_quantized_v6.bin", TP_SH_ENCODING_HALF_L1, TP_LAYOUT_COMPACT, 1},
+        {"tiny_store_unorm8_l1_fast_quantized_v6.bin", TP_SH_ENCODING_UNORM8_L1, TP_LAYOUT_FAST, 1},
+        {"tiny_store_unorm8_l1_compact_v6.bin", TP_SH_ENCODING_UNORM8_L1, TP_LAYOUT_COMPACT, 0},
+        {"tiny_store_unorm8_rebuilt_quantized_v6.bin", TP_SH_ENCODING_UNORM8, TP_LAYOUT_REBUILT, 1}};
     /* The 8-bit codes' steps (sqrt(3) / 127, sqrt(15) / 2 / 127, sqrt(5) / 170) and the ratio ranges' ends. */
     static const double step[9] = {0, 0.013638195, 0.013638195, 0.013638195, 0.015247966, 0.015247966,
                                    0.013153341, 0.015247966, 0.015247966};
@@ -488,7 +488,7 @@ void test_golden_store_encodings(void) {
         memset(&info, 0, sizeof info);
         info.struct_size = sizeof info;
         EXPECT_OK(tp_store_get_info(store, &info));
-        CHECK(info.format_version == 5 && info.sh_encoding == goldens[g].encoding && info.layout == goldens[g].layout);
+        CHECK(info.format_version == 6 && info.sh_encoding == goldens[g].encoding && info.layout == goldens[g].layout);
         CHECK(info.quantized_positions == goldens[g].quantized);
         CHECK(((info.flags & TP_BUILD_COMPACT) != 0) == (goldens[g].layout == TP_LAYOUT_COMPACT));
         for (i = 0; i < 16; ++i) parts += info.section_bytes[i];

@@ -127,7 +127,7 @@ void test_compact_layout(void) {
         }
         fast_info = info_of(fast);
         compact_info = info_of(compact);
-        CHECK(fast_info.format_version == 5 && compact_info.format_version == 5);
+        CHECK(fast_info.format_version == 6 && compact_info.format_version == 6);
         CHECK(fast_info.layout == TP_LAYOUT_FAST && compact_info.layout == TP_LAYOUT_COMPACT);
         CHECK(fast_info.flags == extra);
         CHECK(compact_info.flags == (extra | TP_BUILD_COMPACT));
@@ -197,7 +197,7 @@ void test_compact_layout(void) {
    as a version, not as corruption, and the message says to rebuild. */
 void test_old_format_refused(void) {
     static float positions[3 * CLOUD], sh[27 * CLOUD];
-    static const uint32_t versions[6] = {4u, 3u, 2u, 1u, 6u, 0u};
+    static const uint32_t versions[6] = {5u, 4u, 3u, 2u, 7u, 0u};
     int layout, v;
     make_cloud(positions, sh, CLOUD);
     for (layout = 0; layout < 2; ++layout) {
@@ -213,7 +213,7 @@ void test_old_format_refused(void) {
             return;
         }
         memcpy(bytes, blob, size);
-        CHECK(bytes[8] == 5 && bytes[9] == 0 && bytes[10] == 0 && bytes[11] == 0);
+        CHECK(bytes[8] == 6 && bytes[9] == 0 && bytes[10] == 0 && bytes[11] == 0);
         for (v = 0; v < 6; ++v) {
             tp_store* old = NULL;
             bytes[8] = (unsigned char)versions[v];
@@ -223,7 +223,7 @@ void test_old_format_refused(void) {
             CHECK(old == NULL);
             tp_store_release(old);
         }
-        bytes[8] = 5;
+        bytes[8] = 6;
         {
             tp_store* again = NULL;
             EXPECT_OK(tp_store_load(bytes, size, &again));

@@ -87,7 +87,7 @@ void test_store_info_and_struct_size(void) {
     info.struct_size = sizeof info;
     EXPECT_OK(tp_store_get_info(store, &info));
     EXPECT_OK(tp_store_blob(store, &blob, &size));
-    CHECK(info.format_version == 5);
+    CHECK(info.format_version == 6);
     CHECK(info.dimension == 3);
     CHECK(info.input_probes == CLOUD + 3);
     CHECK(info.probes == CLOUD);

@@ -7,7 +7,7 @@
 set -euo pipefail
 build="$1"; source="$2"; scratch="$3"
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-golden="$source/tests/unit/golden/tiny_store_v5.bin"
+golden="$source/tests/unit/golden/tiny_store_v6.bin"
 rm -rf "$scratch"; mkdir -p "$scratch"
 prefix="$scratch/prefix"
 cmake --install "$build" --prefix "$prefix" >/dev/null

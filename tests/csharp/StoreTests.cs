@@ -49,7 +49,7 @@ static class StoreTests
                     ProbeStoreInfo info = small.Info;
                     bool l1 = encoding == ShEncoding.HalfL1 || encoding == ShEncoding.Unorm8L1;
                     SphericalHarmonicsL2 stored = small.ProbeSh(7);
-                    Tests.Check(info.FormatVersion == 5 && info.ShEncoding == encoding && info.QuantizedPositions == quantize &&
+                    Tests.Check(info.FormatVersion == 6 && info.ShEncoding == encoding && info.QuantizedPositions == quantize &&
                                 info.Layout == StoreLayout.Compact && info.SectionBytes.Total == info.Bytes &&
                                 info.SectionBytes.Positions == positions.Length * (quantize ? 6 : 12) && info.HullProbes > 0 &&
                                 (quantize ? info.PositionStep.x > 0 : info.PositionStep.x == 0) &&

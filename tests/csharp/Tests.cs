@@ -377,7 +377,7 @@ static class Tests
         using (ProbeStore compact = ProbeStore.Build(positions, sh, true, true))
         {
             ProbeStoreInfo fi = fast.Info, ci = compact.Info;
-            Check(fi.FormatVersion == 5 && ci.FormatVersion == 5, "format version 5");
+            Check(fi.FormatVersion == 6 && ci.FormatVersion == 6, "format version 6");
             Check(!fi.Compact && ci.Compact && (ci.Flags & 4u) != 0 && (fi.Flags & 4u) == 0, "compact flag in info");
             Check(ci.Bytes < fi.Bytes, "compact blob is smaller (" + ci.Bytes + " < " + fi.Bytes + ")");
             Check(ci.Cells == fi.Cells && ci.InnerCells == fi.InnerCells, "same cells in both layouts");
@@ -462,7 +462,7 @@ static class Tests
 
             // Format-2 to format-4 blobs: only the version field changed (not even the checksum); refused as a version.
             byte[] blob = fast.Save();
-            Check(BitConverter.ToUInt32(blob, 8) == 5, "format version at byte 8");
+            Check(BitConverter.ToUInt32(blob, 8) == 6, "format version at byte 8");
             foreach (byte version in new byte[] { 2, 3, 4 })
             {
                 var old = (byte[])blob.Clone();

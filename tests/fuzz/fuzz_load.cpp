@@ -1,4 +1,4 @@
-// libFuzzer target: blob loading (format 5: every layout, SH encoding and position encoding, with and
+// libFuzzer target: blob loading (format 6: every layout, SH encoding and position encoding, with and
 // without the occlusion and leak-control sections; older formats are refused by version, the rebuilt
 // layout as unsupported) must reject or accept any bytes safely, and a store that loads must answer
 // queries without reading out of bounds. The first byte picks a mode: bit 0 repairs the checksum first,

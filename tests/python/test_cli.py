@@ -41,7 +41,7 @@ def test_build_from_csv_then_info_and_query(tmp_path):
     info = json.loads(run("info", store_path, "--json").stdout)
     assert info["probes"] == 40 and info["cells"] == info["inner_cells"] + info["outer_cells"]
     assert info["bytes"] == store_path.stat().st_size
-    assert info["format_version"] == 5 and info["layout"] == "fast"
+    assert info["format_version"] == 6 and info["layout"] == "fast"
     text = run("info", store_path).stdout
     assert "probes:" in text and "index_bits:" in text and 'layout:         "fast"' in text
 
@@ -160,7 +160,9 @@ def _assert_leak_picture_shows_the_wall_and_the_difference(path, stdout):
     beside = image[:, walls[2][0] - 40:walls[2][-1] + 40]
     reddish = (beside[:, :, 0] - beside[:, :, 2] > 0.25).sum()
     bluish = (beside[:, :, 2] - beside[:, :, 0] > 0.25).sum()
-    assert reddish > 100 and bluish > 100, (reddish, bluish)
+    # (The west band is the narrower: with the wall's plane judging the side, only the cells whose edges cross the
+    # wall change, and the west side's change is the smaller; 74 strongly blue pixels against 527 red on 2026-11-25.)
+    assert reddish > 100 and bluish > 40, (reddish, bluish)
     change = re.search(r"the largest change, (-?[0-9.]+) of irradiance ([0-9.]+)", stdout)
     assert change and abs(float(change.group(1))) > 0.1 * float(change.group(2)), stdout
 

@@ -45,7 +45,7 @@ def test_leak_control_weighs_down_probes_behind_the_wall():
     plain = tetprobe.Store.build(probes)
     leak = tetprobe.Store.build(probes, scene=scene)
     assert plain.info()["leak_edges"] == 0 and leak.info()["leak_edges"] > 20
-    assert leak.info()["format_version"] == 5
+    assert leak.info()["format_version"] == 6
     rng = np.random.default_rng(8)
     points = np.column_stack([rng.uniform(0.45, 0.9, 400), rng.uniform(-2, 0, 400),
                               rng.uniform(-2, 2, 400)]).astype(np.float32)

@@ -365,7 +365,7 @@ def test_compact_layout_answers_like_the_fast_layout(index32):
     assert not fast_info["compact"] and compact_info["compact"]
     assert compact_info["flags"] & tetprobe._native.BUILD_COMPACT
     assert not fast_info["flags"] & tetprobe._native.BUILD_COMPACT
-    assert fast_info["format_version"] == 5 and compact_info["format_version"] == 5
+    assert fast_info["format_version"] == 6 and compact_info["format_version"] == 6
     assert fast_info["layout"] == "fast" and compact_info["layout"] == "compact"
     assert compact_info["bytes"] < fast_info["bytes"]
     for key in ("probes", "cells", "inner_cells", "outer_cells", "index_bits"):
@@ -479,8 +479,8 @@ def test_older_format_blobs_are_refused_with_a_version_error():
     positions, sh = random_set(50, 241)
     for compact in (False, True):
         blob = bytearray(Store.build(positions, sh, compact=compact).to_bytes())
-        assert struct.unpack_from("<I", blob, 8)[0] == 5
-        for version in (4, 3, 2, 1, 6, 99):
+        assert struct.unpack_from("<I", blob, 8)[0] == 6
+        for version in (5, 4, 3, 2, 1, 7, 99):
             old = bytearray(blob)
             struct.pack_into("<I", old, 8, version)  # nothing else fixed: not even the checksum
             with pytest.raises(Error) as raised:
@@ -527,7 +527,7 @@ def test_sh_encodings_and_quantized_positions(encoding, quantize):
     sh = radiance_sh(300, 262)
     store = Store.build(positions, sh, sh_encoding=encoding, quantize_positions=quantize)
     info = store.info()
-    assert info["format_version"] == 5 and info["layout"] == "fast"
+    assert info["format_version"] == 6 and info["layout"] == "fast"
     assert info["sh_encoding"] == encoding and info["quantized_positions"] == quantize
     sections = info["section_bytes"]
     assert list(sections) == list(tetprobe._native.STORE_SECTIONS)

@@ -1,8 +1,11 @@
-// Leak control (core/leak_control, bake/leak_edges): cells without a blocked probe pair answer bit for
-// bit as without leak control; the weights stay continuous across every facet of a blocked cell; a
-// query at a probe still weighs it exactly 1; the probes behind a wall lose their weight; a step in the
-// floor is no wall; and on the two-rooms scene the leak error against a bake at the path points drops by
-// a clear margin.
+// Leak control (core/leak_control, core/leak_plane, bake/leak_edges): the side of a wall plane is decided
+// exactly; the stored planes are the wall's; cells without a blocked probe pair answer bit for bit as
+// without leak control; inside a blocked cell the weights are those of a slow reference (a probe on the
+// query's side of the wall keeps its weight, one behind it loses the share its partner holds over where
+// the wall crosses) on either side of the wall, and sum to 1; they stay continuous across every facet of
+// a blocked cell; a query at a probe still weighs it exactly 1; the probes behind a wall lose their
+// weight; a step in the floor is no wall; and on the two-rooms scene the leak error against a bake at the
+// path points drops by a clear margin.
 #include <catch2/catch.hpp>
 
 #include "bake/leak_edges.h"
@@ -11,6 +14,9 @@
 #include "bake/scene_file.h"
 #include "bake/store_builder.h"
 #include "core/error.h"
+#include "core/leak_control.h"
+#include "core/leak_plane.h"
+#include "core/octahedral_normal.h"
 #include "core/store.h"
 #include "core/store_data.h"
 
@@ -103,28 +109,169 @@ WallStores wall_stores() {
 
 }  // namespace
 
-TEST_CASE("leak: the edges crossing a wall are found, with ramps around the crossing", "[leak]") {
+TEST_CASE("leak: a wall plane's side is decided exactly, where double rounding alone would say 0", "[leak]") {
+    // Code (16384, 0): N = (16384, 0, 16383). At (1, 0, z) against the offset 16384, N . p - offset is
+    // 16383 z exactly: a double sum of the terms loses z beside 16384 and would give 0.
+    const int16_t code[2] = {16384, 0};
+    int32_t n[3];
+    leak_plane_normal(code, n);
+    CHECK((n[0] == 16384 && n[1] == 0 && n[2] == 16383));
+    for (float z : {1e-30f, 1e-45f, 3e-8f}) {
+        const float above[3] = {1.0f, 0.0f, z}, below[3] = {1.0f, 0.0f, -z};
+        CHECK(leak_plane_side(code, 16384.0f, above) == 1);
+        CHECK(leak_plane_side(code, 16384.0f, below) == -1);
+    }
+    const float on[3] = {1.0f, 0.0f, 0.0f};
+    CHECK(leak_plane_side(code, 16384.0f, on) == 0);
+    // Against a reference exact in double: coordinates on a 2^-8 grid below 2^12 (products below 2^27,
+    // sums exact), the offset on the same grid; every code, the folded ones included.
+    std::mt19937 random(41);
+    std::uniform_int_distribution<int> code_part(-32768, 32767), grid(-(1 << 20), 1 << 20);
+    for (int i = 0; i < 20000; ++i) {
+        const int16_t c[2] = {int16_t(code_part(random)), int16_t(code_part(random))};
+        leak_plane_normal(c, n);
+        REQUIRE((std::abs(n[0]) + std::abs(n[1]) + std::abs(n[2]) >= 32767));
+        float direction[3];
+        decode_normal(c, direction);  // the same direction, normalised
+        const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+        for (int k = 0; k < 3; ++k) REQUIRE(direction[k] == float(n[k] / length));
+        const float p[3] = {float(grid(random)) / 256, float(grid(random)) / 256, float(grid(random)) / 256};
+        double exact = double(n[0]) * p[0] + double(n[1]) * p[1] + double(n[2]) * p[2];
+        const float offset = i % 4 == 0 ? float(exact) : float(grid(random)) / 256;  // on the plane, often
+        if (i % 4 == 0 && double(offset) != exact) continue;
+        exact -= offset;
+        REQUIRE(leak_plane_side(c, offset, p) == (exact > 0) - (exact < 0));
+    }
+}
+
+TEST_CASE("leak: a stored wall plane separates its pair exactly and passes by the crossing", "[leak]") {
+    std::mt19937 random(43);
+    std::uniform_real_distribution<double> u(-1.0, 1.0), t(0.01, 0.99);
+    size_t grazing = 0;
+    for (int i = 0; i < 5000; ++i) {
+        float own[3], other[3];
+        double normal[3], crossing[3];
+        for (int k = 0; k < 3; ++k) {
+            own[k] = float(100 * u(random));
+            other[k] = float(own[k] + 3 * u(random));
+            normal[k] = u(random);
+        }
+        const double at = t(random);
+        for (int k = 0; k < 3; ++k) crossing[k] = own[k] + at * (double(other[k]) - own[k]);
+        if (i % 10 == 0) {  // a wall almost along the segment: the code cannot separate, the segment's direction is used
+            const double d[3] = {double(other[0]) - own[0], double(other[1]) - own[1], double(other[2]) - own[2]};
+            normal[0] = d[1], normal[1] = -d[0], normal[2] = 1e-9;
+            ++grazing;
+        }
+        int16_t code[2];
+        float offset;
+        REQUIRE(make_leak_plane(normal, crossing, own, other, code, &offset));
+        REQUIRE(leak_plane_side(code, offset, own) == 1);
+        REQUIRE(leak_plane_side(code, offset, other) == -1);
+        int32_t n[3];
+        leak_plane_normal(code, n);
+        const double length = std::sqrt(double(n[0]) * n[0] + double(n[1]) * n[1] + double(n[2]) * n[2]);
+        const double distance = (n[0] * crossing[0] + n[1] * crossing[1] + n[2] * crossing[2] - offset) / length;
+        INFO("the crossing lies " << distance << " from the plane");
+        CHECK(std::fabs(distance) < 1e-4);  // float offsets near 100 * 56755: a few float steps over |N|
+    }
+    CHECK(grazing > 0);
+}
+
+TEST_CASE("leak: the edges crossing a wall are found, each side's plane the wall's", "[leak]") {
     const WallStores s = wall_stores();
     REQUIRE((s.leak->header().flags & kFlagLeakControl) != 0);
     REQUIRE((s.plain->header().flags & kFlagLeakControl) == 0);
     REQUIRE(s.leak->header().leak_edge_count == s.leak_data.leak_edges.size());
     size_t edges = 0;
+    const double wall = kWallX - s.leak_data.origin[0];  // local
     for (uint32_t a = 0; a < s.leak_data.probe_count(); ++a) {
         for (uint32_t i = s.leak_data.leak_offsets[a]; i < s.leak_data.leak_offsets[a + 1]; ++i, ++edges) {
             const LeakEdge& e = s.leak_data.leak_edges[i];
             const float* pa = &s.leak_data.positions[3 * a];
             const float* pb = &s.leak_data.positions[3 * e.partner];
-            const double xa = pa[0] + s.leak_data.origin[0], xb = pb[0] + s.leak_data.origin[0];
-            REQUIRE((xa - kWallX) * (xb - kWallX) < 0);  // on either side of the wall
-            const double crossing = (kWallX - xa) / (xb - xa);
+            REQUIRE((pa[0] - wall) * (pb[0] - wall) < 0);  // on either side of the wall
+            const double crossing = (wall - pa[0]) / (pb[0] - pa[0]);
             const double crossing_y = pa[1] + crossing * (pb[1] - pa[1]) + s.leak_data.origin[1];
             REQUIRE(crossing_y <= kWallTop + 1e-6);  // through the wall, not over it
-            // A wall without thickness: the ramp is the crossing widened by the margin on both sides.
-            CHECK(e.start == Approx(std::fmax(0.0, crossing - kLeakRampMargin)).margin(1e-5));
-            CHECK(e.end == Approx(std::fmin(1.0, crossing + kLeakRampMargin)).margin(1e-5));
+            const float* ends[2] = {pa, pb};
+            for (int side = 0; side < 2; ++side) {
+                // A wall without thickness: both planes are x = wall, each facing its probe.
+                const int16_t code[2] = {e.normal[side][0], e.normal[side][1]};
+                int32_t n[3];
+                leak_plane_normal(code, n);
+                const int facing = ends[side][0] < wall ? -1 : 1;
+                CHECK((n[0] == facing * 32767 && n[1] == 0 && n[2] == 0));
+                CHECK(double(e.offset[side]) / n[0] == Approx(wall).margin(1e-6));
+                CHECK(leak_plane_side(code, e.offset[side], ends[side]) == 1);
+                CHECK(leak_plane_side(code, e.offset[side], ends[1 - side]) == -1);
+                const double reach = side == 0 ? crossing : 1 - crossing;
+                CHECK(e.reach[side] / 65535.0 == Approx(reach).margin(1e-5));
+            }
         }
     }
     CHECK(edges > 20);
+}
+
+TEST_CASE("leak: inside a blocked cell the weights on each side of the wall are the reference's", "[leak]") {
+    // The slow reference: the plain barycentric weights w; a probe k behind the wall from the query (on the
+    // other side of x = kWallX) is kept by 1 - min(1, sum of w_j / reach_k(j)) over its blocked partners j on
+    // the query's side (reach_k(j): the fraction of the edge from k to the wall); every probe then by
+    // (kept + kLeakFloor), renormalised to sum 1. A probe on the query's side keeps its weight (its share
+    // grows by the common renormalisation only). Inverting the side test, or testing the wrong probe's
+    // plane, fails this.
+    const WallStores s = wall_stores();
+    const double* origin = s.leak->header().origin;
+    std::mt19937 random(47);
+    std::uniform_real_distribution<float> x(kWallX - 0.63f, kWallX + 0.63f), y(-2.0f, 0.5f), z(-2.0f, 2.0f);
+    std::map<int32_t, int> sides_seen;  // per blocked cell: bit 0 a query left of the wall, bit 1 right
+    size_t checked = 0;
+    for (int q = 0; q < 20000; ++q) {
+        const float p[3] = {x(random), y(random), z(random)};
+        if (std::fabs(p[0] - kWallX) < 1e-3f) continue;
+        const bool left = p[0] < kWallX;
+        const Location a = s.plain->locate(p, -1), b = s.leak->locate(p, -1);
+        REQUIRE(a.cell == b.cell);
+        if (!has_blocked_pair(s.leak_data, b.probes)) continue;
+        ++checked;
+        std::map<uint32_t, double> w = by_probe(a), got = by_probe(b);
+        std::map<uint32_t, double> kept;
+        for (const auto& [k, wk] : w) {
+            kept[k] = 1;
+            const double xk = s.leak->probe_position(k)[0] + origin[0];
+            if ((xk < kWallX) == left) continue;  // on the query's side
+            for (const auto& [j, wj] : w) {
+                if (!blocked(s.leak_data, k, j)) continue;
+                const double xj = s.leak->probe_position(j)[0] + origin[0];
+                const double reach = (xk - kWallX) / (xk - xj);
+                kept[k] -= wj / reach;
+            }
+            kept[k] = std::fmax(0.0, kept[k]);
+        }
+        double total = 0;
+        for (const auto& [k, wk] : w) total += wk * (kept[k] + kLeakFloor);
+        double sum = 0, own_side_ratio = -1;
+        for (const auto& [k, wk] : w) {
+            const double expected = wk * (kept[k] + kLeakFloor) / total;
+            INFO("query (" << p[0] << ", " << p[1] << ", " << p[2] << "), probe " << k);
+            REQUIRE(got[k] == Approx(expected).margin(2e-4));
+            sum += got[k];
+            const double xk = s.leak->probe_position(k)[0] + origin[0];
+            if ((xk < kWallX) == left && wk > 0.05) {  // the query's side: one common ratio, at least 1
+                const double ratio = got[k] / wk;
+                REQUIRE(ratio >= 1 - 1e-6);
+                if (own_side_ratio >= 0) REQUIRE(ratio == Approx(own_side_ratio).epsilon(1e-5));
+                own_side_ratio = ratio;
+            }
+        }
+        REQUIRE(sum == Approx(1.0).margin(1e-6));
+        sides_seen[b.cell] |= left ? 1 : 2;
+    }
+    size_t both = 0;
+    for (const auto& [cell, seen] : sides_seen) both += seen == 3;
+    INFO(checked << " queries in blocked cells, " << both << " cells queried on both sides of the wall");
+    CHECK(checked > 3000);
+    CHECK(both > 20);
 }
 
 TEST_CASE("leak: cells without a blocked pair answer bit for bit as without leak control", "[leak]") {
@@ -198,14 +345,17 @@ TEST_CASE("leak: weights are continuous across every facet of a blocked cell", "
                     inside[a] = float(origin[a] + on_facet[a] + step * towards[a] / length);
                     outside[a] = float(origin[a] + on_facet[a] - step * towards[a] / length);
                 }
+                // The weights may jump where a wall's plane is crossed (x = kWallX, the one plane here): not
+                // across a facet.
+                if ((inside[0] < kWallX) != (outside[0] < kWallX) || inside[0] == kWallX || outside[0] == kWallX) continue;
                 worst = std::fmax(worst, largest_difference(store.locate(inside, -1), store.locate(outside, -1)));
             }
         }
     }
     INFO("largest jump across " << facets << " facets: " << worst);
     CHECK(facets > 50);
-    // The steepest ramp is a tenth of an edge (1 unit): its slope, 15 per unit, over the 4e-5 between the
-    // two sides bounds the honest change; a jump would be of order 0.1 to 1.
+    // The steepest share is w_j / reach with reach >= 0.37 / 1.5 of an edge: its slope, a few per unit,
+    // over the 4e-5 between the two sides bounds the honest change; a jump would be of order 0.1 to 1.
     CHECK(worst < 1e-3);
 }
 
@@ -314,17 +464,13 @@ TEST_CASE("leak: a step in the floor between two probes is not a wall; a wall is
     CHECK(blocked_pair(wall));
 }
 
-TEST_CASE("leak: ramps narrower than rounding (a valid blob's denormal ramp) still give finite weights", "[leak]") {
-    // Found by fuzzing: seen from the partner's side, the ramp [0, 1e-45] is [1 - 1e-45, 1] = [1, 1].
+TEST_CASE("leak: a wall plane at its probe (the smallest reach) still gives finite weights summing to 1", "[leak]") {
     WallStores s = wall_stores();
-    for (LeakEdge& e : s.leak_data.leak_edges) {
-        e.start = 0.0f;
-        e.end = 1e-45f;
-    }
+    for (LeakEdge& e : s.leak_data.leak_edges) e.reach[0] = e.reach[1] = 1;
     const std::unique_ptr<Store> store = load(s.leak_data);
     std::mt19937 random(31);
     std::uniform_real_distribution<float> u(-2.2f, 2.2f);
-    const std::vector<float> probes = lattice_probes();  // at a probe, its blocked partners see t = 1 exactly
+    const std::vector<float> probes = lattice_probes();
     for (size_t q = 0; q < 5000 + probes.size() / 3; ++q) {
         float p[3] = {u(random), u(random), u(random)};
         if (q >= 5000) std::copy_n(&probes[3 * (q - 5000)], 3, p);

@@ -147,7 +147,7 @@ class Store(NativeHandle):
 
     def info(self):
         """Counts and layout as a dict: probes, input_probes, merged_probes, cells, inner_cells,
-        outer_cells, index_bits (16 or 32), bytes (the blob's size), format_version (5), dimension of
+        outer_cells, index_bits (16 or 32), bytes (the blob's size), format_version (6), dimension of
         the probe set (0 point, 1 line, 2 flat, 3 general), flags (TP_BUILD_* bits of the blob;
         BUILD_INDEX32 whenever it uses 32-bit indices), compact (True for the compact layout),
         extrapolation, grid (cold-start grid cells along x, y, z), origin (the local origin, world
