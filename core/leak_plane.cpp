@@ -1,5 +1,6 @@
 #include "core/leak_plane.h"
 
+#include "core/exact_sum.h"
 #include "core/octahedral_normal.h"
 
 #include <cmath>
@@ -9,32 +10,12 @@ namespace tetprobe {
 
 namespace {
 
-// s + e == a + b exactly (Knuth's two-sum).
-inline void two_sum(double a, double b, double& s, double& e) {
-    s = a + b;
-    const double b_virtual = s - a;
-    const double a_virtual = s - b_virtual;
-    e = (a - a_virtual) + (b - b_virtual);
-}
-
-// Exact sign of t[0] + t[1] + t[2] + t[3] (Shewchuk's grow-expansion: the components come out
-// non-overlapping in increasing magnitude, so the last non-zero one carries the sum's sign).
+// Exact sign of t[0] + t[1] + t[2] + t[3].
 int exact_sign_of_sum(const double t[4]) {
     double e[4];
     int n = 0;
-    for (int k = 0; k < 4; ++k) {
-        double q = t[k];
-        int m = 0;
-        for (int i = 0; i < n; ++i) {
-            double s, h;
-            two_sum(q, e[i], s, h);
-            q = s;
-            if (h != 0) e[m++] = h;
-        }
-        if (q != 0) e[m++] = q;
-        n = m;
-    }
-    return n == 0 ? 0 : (e[n - 1] > 0 ? 1 : -1);
+    for (int k = 0; k < 4; ++k) n = grow_expansion(e, n, t[k]);
+    return expansion_sign(e, n);
 }
 
 // The smallest float strictly above / below x (a double), or x's neighbour when x is a float.

@@ -12,39 +12,14 @@
 // cannot change any result; no std::fma and no Veltkamp splitting (which contraction would break).
 #include "core/orientation.h"
 
+#include "core/exact_sum.h"
+
 #include <cstdint>
 #include <cstring>
 
 namespace tetprobe {
 
 namespace {
-
-// s + e == a + b exactly, s = fl(a + b) (Knuth's two-sum: no ordering of |a|, |b| needed).
-inline void two_sum(double a, double b, double& s, double& e) {
-    s = a + b;
-    const double b_virtual = s - a;
-    const double a_virtual = s - b_virtual;
-    e = (a - a_virtual) + (b - b_virtual);
-}
-
-// Adds b to the expansion e[0..n) (non-overlapping, increasing magnitude, no zeros) in place and
-// returns the new length, at most n + 1.
-inline int grow_expansion(double* e, int n, double b) {
-    double q = b;
-    int m = 0;
-    for (int i = 0; i < n; ++i) {
-        double s, h;
-        two_sum(q, e[i], s, h);
-        q = s;
-        if (h != 0) e[m++] = h;  // m <= i: e[i] has been read already
-    }
-    if (q != 0) e[m++] = q;
-    return m;
-}
-
-inline int sign_of(double x) { return (x > 0) - (x < 0); }
-
-inline int expansion_sign(const double* e, int n) { return n == 0 ? 0 : sign_of(e[n - 1]); }
 
 // x*y*z exactly as hi + lo, for floats x, y, z: p = x*y is exact (at most 48 significant bits); its
 // high part keeps the top 24 bits of the significand (the low 29 stored bits cleared, truncation),
