@@ -188,7 +188,7 @@ void add_mesh(Scene& scene, const json& value, size_t index, const std::string& 
 void add_light(Scene& scene, const json& value, size_t index, const std::string& file) {
     std::string where = file + ": light " + std::to_string(index);
     only_keys(value, where, {"type", "mode", "shadows", "color", "intensity", "position", "direction", "range",
-                             "inner_angle", "outer_angle", "name"});
+                             "inner_angle", "outer_angle", "near_distance", "name"});
     if (value.contains("name")) where += " ('" + text(value["name"], where + ": name") + "')";
     LightDescription light;
     if (!value.contains("type")) fail_at(where, "needs a \"type\"");
@@ -213,6 +213,8 @@ void add_light(Scene& scene, const json& value, size_t index, const std::string&
     }
     if (value.contains("inner_angle")) light.inner_angle = float(number(value["inner_angle"], where + ": inner_angle"));
     if (value.contains("outer_angle")) light.outer_angle = float(number(value["outer_angle"], where + ": outer_angle"));
+    if (value.contains("near_distance"))
+        light.near_distance = float(number(value["near_distance"], where + ": near_distance"));
     scene.add_light(light, where);
 }
 

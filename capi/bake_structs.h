@@ -12,6 +12,7 @@
 #include "core/error.h"
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
 #include <string>
 
@@ -53,7 +54,9 @@ inline Material material_from_c(const tp_material& material, const std::string& 
 
 // A C light (struct_size must be set), for Scene::add_light to validate; `where` names it in messages.
 inline LightDescription light_from_c(const tp_light& light, const std::string& where) {
-    if (light.struct_size < sizeof(tp_light))
+    // The first tp_light ended at outer_angle; near_distance grew at its end.
+    constexpr size_t kFirstLightSize = offsetof(tp_light, outer_angle) + sizeof(float);
+    if (light.struct_size < kFirstLightSize)
         throw Error(Status::invalid_argument, where + ": struct_size is not set (call tp_light_init)");
     LightDescription d;
     d.type = static_cast<LightType>(light.type);
@@ -66,6 +69,7 @@ inline LightDescription light_from_c(const tp_light& light, const std::string& w
     d.range = light.range;
     d.inner_angle = light.inner_angle;
     d.outer_angle = light.outer_angle;
+    if (light.struct_size >= offsetof(tp_light, near_distance) + sizeof(float)) d.near_distance = light.near_distance;
     return d;
 }
 

@@ -76,6 +76,7 @@ inline tp_light default_light() {
     light.range = kDefaultLightRange;
     light.inner_angle = kDefaultSpotInnerAngle;
     light.outer_angle = kDefaultSpotOuterAngle;
+    light.near_distance = 0;
     return light;
 }
 

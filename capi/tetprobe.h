@@ -569,6 +569,10 @@ typedef struct tp_light {
     float range;                 /* point, spot: no light beyond (INFINITY = unlimited) */
     float inner_angle;           /* spot: full cone angle in degrees with full intensity */
     float outer_angle;           /* spot: full cone angle in degrees beyond which there is no light */
+    /** Point, spot: closer than this the irradiance stays at its value at this distance instead of growing
+        without bound (0 = pure inverse square; q3map2 clamps at 16 units). Added in 0.7: a struct_size that
+        ends before it (an older caller) reads as 0. */
+    float near_distance;
 } tp_light;
 
 TP_API tp_status tp_material_init(tp_material* material);

@@ -49,6 +49,9 @@ namespace TetProbe
         public float InnerAngle;
         /// <summary>Spot lights: full cone angle in degrees beyond which there is no light.</summary>
         public float OuterAngle;
+        /// <summary>Point and spot lights: closer than this the irradiance stays at its value at this distance
+        /// instead of growing without bound (0 = pure inverse square; a light compiler's near-field clamp).</summary>
+        public float NearDistance;
 
         public LightType Type { get { return (LightType)type; } set { type = (uint)value; } }
         public LightMode Mode { get { return (LightMode)mode; } set { mode = (uint)value; } }
@@ -77,21 +80,25 @@ namespace TetProbe
             return light;
         }
 
-        /// <summary>A point light; intensity is radiant intensity (irradiance intensity/d² at distance d).</summary>
+        /// <summary>A point light; intensity is radiant intensity (irradiance intensity/d² at distance d), held at its
+        /// value at nearDistance closer than that (0 = none).</summary>
         public static Light Point(Vector3 position, Vector3 color, float intensity = 1, float range = float.PositiveInfinity,
-                                  LightMode mode = LightMode.Baked, bool shadows = true)
+                                  LightMode mode = LightMode.Baked, bool shadows = true, float nearDistance = 0)
         {
             Light light = Make(LightType.Point, color, intensity, mode, shadows);
             light.Position = position;
             light.Range = range;
+            light.NearDistance = nearDistance;
             return light;
         }
 
         /// <summary>A spot light at position shining along direction; cone angles are full angles in degrees.</summary>
         public static Light Spot(Vector3 position, Vector3 direction, Vector3 color, float intensity, float range,
-                                 float innerAngle, float outerAngle, LightMode mode = LightMode.Baked, bool shadows = true)
+                                 float innerAngle, float outerAngle, LightMode mode = LightMode.Baked, bool shadows = true,
+                                 float nearDistance = 0)
         {
             Light light = Make(LightType.Spot, color, intensity, mode, shadows);
+            light.NearDistance = nearDistance;
             light.Position = position;
             light.Direction = direction;
             light.Range = range;

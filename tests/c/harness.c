@@ -166,6 +166,7 @@ int main(int argc, char** argv) {
     test_outside_batch();
     test_small_sets();
     test_scene_and_bake();
+    test_light_near_distance();
     test_scene_files();
     test_scene_import();
     test_occlusion_and_leak_control();

@@ -93,6 +93,7 @@ void test_old_format_refused(void);
 void test_batch_options(void);
 void test_outside_batch(void);
 void test_scene_and_bake(void);
+void test_light_near_distance(void);
 void test_scene_files(void);
 void test_scene_import(void);
 /* occlusion_leak.c */

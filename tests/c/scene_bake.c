@@ -162,6 +162,50 @@ void test_scene_and_bake(void) {
     tp_scene_release(scene);
 }
 
+/* A point light's near distance: closer than it the irradiance is the one at that distance; a negative
+   distance is refused with a message naming it. */
+void test_light_near_distance(void) {
+    static const float floor_vertices[12] = {-10, -5, -10, 10, -5, -10, 10, -5, 10, -10, -5, 10};
+    static const uint32_t floor_indices[6] = {0, 2, 1, 0, 3, 2};
+    const float probe[3] = {0.2f, 0, 0}, towards_light[3] = {-1, 0, 0};
+    float near_sh[27], far_sh[27], near_e[3], far_e[3];
+    tp_scene* plain = NULL;
+    tp_scene* clamped = NULL;
+    tp_material material;
+    tp_light light;
+    tp_bake_options options;
+    uint32_t id = 0;
+    EXPECT_OK(tp_scene_create(&plain));
+    EXPECT_OK(tp_scene_create(&clamped));
+    if (!plain || !clamped) goto done;
+    tp_material_init(&material);
+    EXPECT_OK(tp_scene_add_mesh(plain, floor_vertices, 4, floor_indices, 2, &material, 1, NULL, &id));
+    EXPECT_OK(tp_scene_add_mesh(clamped, floor_vertices, 4, floor_indices, 2, &material, 1, NULL, &id));
+    tp_light_init(&light);
+    CHECK(light.near_distance == 0.0f);
+    light.type = TP_LIGHT_POINT;
+    light.intensity = 1.0f;
+    EXPECT_OK(tp_scene_add_light(plain, &light, &id));
+    light.near_distance = 0.5f;
+    EXPECT_OK(tp_scene_add_light(clamped, &light, &id));
+    tp_bake_options_init(&options);
+    options.rays = 16;
+    options.bounces = 0;
+    EXPECT_OK(tp_bake(plain, probe, 0, 1, &options, far_sh, 0));
+    EXPECT_OK(tp_bake(clamped, probe, 0, 1, &options, near_sh, 0));
+    EXPECT_OK(tp_sh_eval_irradiance(far_sh, towards_light, far_e));
+    EXPECT_OK(tp_sh_eval_irradiance(near_sh, towards_light, near_e));
+    /* Direct light only, no noise: the ratio is (0.5 / 0.2)^2. */
+    CHECK(near_e[0] > 0.0f);
+    CHECK_NEAR(far_e[0] / near_e[0], 6.25f, 1e-3f);
+    light.near_distance = -1.0f;
+    EXPECT_STATUS(tp_scene_add_light(clamped, &light, &id), TP_ERROR_SCENE);
+    CHECK(strstr(tp_last_error(), "near distance") != NULL);
+done:
+    tp_scene_release(plain);
+    tp_scene_release(clamped);
+}
+
 void test_scene_files(void) {
     tp_scene* scene = NULL;
     char path[1024];

@@ -128,6 +128,9 @@ static class SceneTests
             Tests.Throws<TetProbeException>(() => scene.AddMesh(Square, SquareIndices, bad), "albedo above 1");
             Tests.Throws<TetProbeException>(() => scene.AddLight(TetProbe.Light.Point(new Vector3(float.NaN, 0, 0), new Vector3(1, 1, 1))),
                                             "NaN light position");
+            Tests.Throws<TetProbeException>(() => scene.AddLight(TetProbe.Light.Point(new Vector3(0, 3, 0), new Vector3(1, 1, 1), 1,
+                                                                                      float.PositiveInfinity, LightMode.Baked, true, -1)),
+                                            "negative near distance", e => e.Status == TetProbeStatus.Scene && e.Message.Contains("near distance"));
             Tests.Throws<ArgumentOutOfRangeException>(() => Baker.Bake(scene, probes, new BakeOptions { Rays = -1 }), "negative rays");
             Tests.Throws<ArgumentNullException>(() => Baker.Bake(null, probes), "null scene");
         }

@@ -328,3 +328,16 @@ def test_the_probe_file_document_example_builds(tmp_path):
     got, _ = store.interpolate(rows[:, :3])
     assert np.allclose(got, rows[:, 3:], atol=2e-3)
     assert rows[0, 3] == pytest.approx(2 * math.sqrt(math.pi), rel=1e-7)
+
+
+def test_a_lights_near_distance_holds_its_irradiance_inside_it():
+    def irradiance_at(near_distance):
+        scene = Scene()
+        scene.add_mesh(QUAD * 10 + np.array([0, -5, 0], dtype=np.float32), QUAD_TRIANGLES)
+        scene.add_point_light((0, 0, 0), (1, 1, 1), intensity=1.0, near_distance=near_distance)
+        out = bake(scene, np.array([[0.2, 0, 0]], dtype=np.float32), rays=16, bounces=0)
+        return sh.eval_irradiance(out[0], (-1, 0, 0))[0]
+    # Direct light only, no noise: the inverse square at 0.2 against the one held at 0.5.
+    assert irradiance_at(0.0) / irradiance_at(0.5) == pytest.approx((0.5 / 0.2) ** 2, rel=1e-4)
+    with pytest.raises(Error, match="near distance"):
+        Scene().add_point_light((0, 0, 0), (1, 1, 1), near_distance=-1.0)

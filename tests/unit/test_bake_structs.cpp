@@ -13,6 +13,7 @@
 #include "core/error.h"
 
 #include <array>
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -44,6 +45,7 @@ TEST_CASE("C structs: tp_light_init and tp_material_init give the bake's own def
     CHECK(from_c.range == own.range);
     CHECK(from_c.inner_angle == own.inner_angle);
     CHECK(from_c.outer_angle == own.outer_angle);
+    CHECK(from_c.near_distance == own.near_distance);
 
     const Material material = material_from_c(default_material(), "material 0"), own_material;
     CHECK(material.albedo == own_material.albedo);
@@ -95,6 +97,7 @@ TEST_CASE("C structs: every field of a tp_light and a tp_material is carried ove
     c.direction[0] = 0.5f, c.direction[1] = -2, c.direction[2] = 0.25f;
     c.range = 12;
     c.inner_angle = 10, c.outer_angle = 70;
+    c.near_distance = 0.5f;
     const LightDescription d = light_from_c(c, "light 0");
     CHECK(d.type == LightType::spot);
     CHECK(d.mode == LightMode::mixed);
@@ -106,6 +109,15 @@ TEST_CASE("C structs: every field of a tp_light and a tp_material is carried ove
     CHECK(d.range == 12);
     CHECK(d.inner_angle == 10);
     CHECK(d.outer_angle == 70);
+    CHECK(d.near_distance == 0.5f);
+
+    // An older caller's struct ends before near_distance: it reads as 0, and nothing past its end is read.
+    tp_light older = c;
+    older.struct_size = uint32_t(offsetof(tp_light, near_distance));
+    CHECK(light_from_c(older, "light 1").near_distance == 0);
+    CHECK(light_from_c(older, "light 1").outer_angle == 70);
+    older.struct_size = uint32_t(offsetof(tp_light, outer_angle));  // shorter than any tp_light ever was
+    CHECK(status_of([&] { light_from_c(older, "light 2"); }) == Status::invalid_argument);
 
     // A value C cannot check is passed through and refused by bake/, by the same rule as any caller's.
     Scene scene;

@@ -372,7 +372,7 @@ TEST_CASE("JSON scene: inline meshes, files, lights, sky, probes and grids", "[s
       ],
       "lights": [
         {"type": "directional", "direction": [0,-2,0], "intensity": 3, "mode": "realtime", "shadows": false},
-        {"type": "point", "position": [1,2,3], "range": "inf", "intensity": 2},
+        {"type": "point", "position": [1,2,3], "range": "inf", "intensity": 2, "near_distance": 0.5},
         {"type": "spot", "position": [0,5,0], "direction": [0,-1,0], "inner_angle": 10, "outer_angle": 30, "range": 9,
          "intensity": 5, "name": "torch"}
       ],
@@ -393,6 +393,8 @@ TEST_CASE("JSON scene: inline meshes, files, lights, sky, probes and grids", "[s
     CHECK(scene.lights()[0].direction[1] == -1.0);
     CHECK(scene.lights()[0].intensity == 3.0f);
     CHECK(std::isinf(scene.lights()[1].range));
+    CHECK(scene.lights()[1].near_distance == 0.5);
+    CHECK(scene.lights()[2].near_distance == 0);
     CHECK(scene.lights()[2].cos_inner == Approx(std::cos(5.0 * kPi / 180.0)));
     CHECK(scene.sky().kind == SkyKind::color);
     CHECK(scene.up() == UpAxis::pos_y);
@@ -418,6 +420,7 @@ TEST_CASE("JSON scene: optional keys take their documented defaults", "[scene][i
     CHECK(std::isinf(l.range));
     CHECK(l.cos_inner == Approx(std::cos(kDefaultSpotInnerAngle / 2 * kPi / 180)));
     CHECK(l.cos_outer == Approx(std::cos(kDefaultSpotOuterAngle / 2 * kPi / 180)));
+    CHECK(l.near_distance == 0);
     CHECK(scene.up() == UpAxis::pos_y);
     CHECK(scene.probe_count() == 0);
     CHECK(scene.sky().kind == SkyKind::none);
@@ -468,6 +471,10 @@ TEST_CASE("JSON scene: errors name the file, the mesh or light and what is wrong
     expect(R"({"lights": [{"type": "point", "position": [0,0,0], "color": [1,1,1]}]})", Status::scene,
            {"light 0", "needs an \"intensity\""});
     expect(R"({"lights": [{"type": "point", "intensity": 1}]})", Status::scene, {"light 0", "position"});
+    expect(R"({"lights": [{"type": "point", "position": [0,0,0], "intensity": 1, "near_distance": -1}]})", Status::scene,
+           {"light 0", "near distance"});
+    expect(R"({"lights": [{"type": "point", "position": [0,0,0], "intensity": 1, "near_distance": "close"}]})",
+           Status::scene, {"light 0", "near_distance"});
     expect(R"({"lights": [{"position": [0,0,0], "intensity": 1, "name": "lamp"}]})", Status::scene, {"light 0 ('lamp')", "type"});
     expect(std::string(R"({"lights": [)") + point + R"(], "up": "north"})", Status::scene, {"up", "north"});
     expect(R"({"sky": {"sh": [1, 2, 3]}})", Status::scene, {"sky", "27"});

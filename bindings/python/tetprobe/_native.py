@@ -110,7 +110,7 @@ class Light(Structure):
     _fields_ = [("struct_size", c_uint32), ("type", c_uint32), ("mode", c_uint32), ("shadows", c_int32),
                 ("color", c_float * 3), ("intensity", c_float), ("position", c_float * 3),
                 ("direction", c_float * 3), ("range", c_float), ("inner_angle", c_float),
-                ("outer_angle", c_float)]
+                ("outer_angle", c_float), ("near_distance", c_float)]
 
 
 class SceneLoadOptions(Structure):

@@ -136,21 +136,25 @@ class Scene(NativeHandle):
         light's id (int)."""
         return self._add_light(_native.LIGHT_DIRECTIONAL, color, intensity, mode, shadows, direction=direction)
 
-    def add_point_light(self, position, color, intensity=1.0, range=math.inf, mode="baked", shadows=True):
+    def add_point_light(self, position, color, intensity=1.0, range=math.inf, mode="baked", shadows=True,
+                        near_distance=0.0):
         """Adds a point light at position=(x, y, z) (world units) of linear color=(r, g, b) and radiant
         intensity `intensity` (irradiance color * intensity / d^2 at distance d, facing it), no light
-        beyond range (world units, math.inf = unlimited); mode and shadows as in add_directional_light.
-        Returns the light's id (int)."""
-        return self._add_light(_native.LIGHT_POINT, color, intensity, mode, shadows, position=position, range=range)
+        beyond range (world units, math.inf = unlimited); closer than near_distance (world units, 0 = none)
+        the irradiance stays at its value at that distance (a light compiler's near-field clamp); mode and
+        shadows as in add_directional_light. Returns the light's id (int)."""
+        return self._add_light(_native.LIGHT_POINT, color, intensity, mode, shadows, position=position, range=range,
+                               near_distance=near_distance)
 
     def add_spot_light(self, position, direction, color, intensity=1.0, range=math.inf, inner_angle=None,
-                       outer_angle=None, mode="baked", shadows=True):
+                       outer_angle=None, mode="baked", shadows=True, near_distance=0.0):
         """Adds a spot light at position=(x, y, z) (world units) shining along direction=(x, y, z) of linear
-        color=(r, g, b), intensity and range as add_point_light; inner_angle and outer_angle are full
+        color=(r, g, b), intensity, range and near_distance as add_point_light; inner_angle and outer_angle are full
         cone angles in degrees (full intensity inside inner_angle, none beyond outer_angle; None = the
         library's defaults); mode and shadows as in add_directional_light. Returns the light's id (int)."""
         return self._add_light(_native.LIGHT_SPOT, color, intensity, mode, shadows, position=position,
-                               direction=direction, range=range, inner_angle=inner_angle, outer_angle=outer_angle)
+                               direction=direction, range=range, inner_angle=inner_angle, outer_angle=outer_angle,
+                               near_distance=near_distance)
 
     def set_sky(self, color=None, sh=None):
         """Sets the sky: constant linear radiance color=(r, g, b), or radiance given as SH sh[27] (float32,
