@@ -4,7 +4,8 @@
 //   tetprobe_bench levels [run] [--levels default|all|A,B,...] [--out DIR] [--quick]
 //       The part of the report: on each level, tetprobe's probe choices (probe_choices.h) in every store
 //       layout (store_layouts.h) at each probe count, the peers (level_peers.h) at the bytes of each
-//       tetprobe layout's placed store, all measured with the one metric (level_metric.h). Writes
+//       tetprobe layout's placed store, and at the bytes of each compact placed store every layout with as
+//       many probes of one placement order as fit, all measured with the one metric (level_metric.h). Writes
 //       DIR/levels.json (after every level) and prints a table per level.
 //   tetprobe_bench levels eval --level NAME --probes FILE.csv [--layout ID] [--json]
 //       One probe set (x,y,z per line) on one level: baked with the level's probe settings, built with
@@ -58,6 +59,7 @@
 //     "candidates": {"count": int, "spacing": float, "find_seconds": float, "bake_seconds": float},
 //     "results": [{                          // <result>
 //       "method": "tetprobe_placed" | "tetprobe_random" | "tetprobe_lattice" | "tetprobe_all" | "tetprobe_given"
+//               | "tetprobe_placed_at_bytes"   // as many of one placement order as fit in a compact budget
 //               | "grid_half" | "grid_apv8" | "bricks_apv8" | "knn4" | "knn4_damped",
 //       "layout": str,                       // tetprobe: a store layout id; peers: "half" | "apv8"
 //       "label": str, "probes": int,         // bricks: samples baked
@@ -68,7 +70,8 @@
 //       "target": int | null,                // tetprobe and knn: the probe count asked for (null: all candidates)
 //       "seeds": int,                        // tetprobe_random: the results are means over this many subsamples
 //       "probe_set": "placed",               // knn: the probes it blends
-//       "budget_bytes": int, "budget_of": str,  // peers: the budget and whose bytes it is ("tetprobe placed compact 400")
+//       "budget_bytes": int, "budget_of": str,  // peers and tetprobe_placed_at_bytes: the budget and whose bytes
+//                                            // it is ("tetprobe placed compact 400")
 //       "note": str}],
 //     "skipped": [{"method": str, "budget_bytes" | "target": int, "why": str}]
 //   }]
@@ -355,6 +358,34 @@ Json run_level(const LevelArgs& a, const std::string& name, const LevelSettings&
         r.method = "tetprobe_all", r.label = "tetprobe, all candidates, " + layout.label;
         r.placement_seconds = candidates.find_seconds, r.bake_seconds = candidates.bake_seconds;
         add(r, {{"target", nullptr}}, "all");
+    }
+    // Equal memory, tetprobe at its best layout: at the bytes of each count's compact placed store (a budget the
+    // peers below are built at), every layout holds as many probes of one placement order as fit (any prefix of
+    // tp_place_probes's order is its placement for that count).
+    const size_t order_count = std::min<size_t>(candidate_count, kPlacementCounts.back());
+    if (order_count >= 4 && !counts.empty()) {
+        double order_seconds = 0;
+        const std::vector<float> order = placed_probes(level, rules, uint32_t(order_count), &order_seconds);
+        const std::vector<float> order_sh = sh_of(level, candidates, order, settings);
+        for (const auto& budget : budgets) {
+            if (budget.first.rfind("tetprobe placed compact ", 0) != 0) continue;
+            for (const StoreLayout& layout : store_layouts()) {
+                const size_t fit = tetprobe_count_within(level, order, order_sh, budget.second, layout);
+                if (fit == 0) {
+                    skipped.push_back({{"method", "tetprobe_placed_at_bytes"}, {"budget_bytes", budget.second},
+                                       {"why", "4 probes of the " + layout.id + " layout exceed the budget"}});
+                    continue;
+                }
+                const std::vector<float> p(order.begin(), order.begin() + 3 * fit);
+                const std::vector<float> sh(order_sh.begin(), order_sh.begin() + 27 * fit);
+                LevelResult r = evaluate_tetprobe(level, p, sh, layout);
+                r.method = "tetprobe_placed_at_bytes";
+                r.label = "tetprobe, placed, as many as fit, " + layout.label;
+                r.placement_seconds = order_seconds;
+                r.bake_seconds = bake_per_probe * double(r.probes);
+                add(r, {{"target", fit}, {"budget_bytes", budget.second}, {"budget_of", budget.first}}, "at bytes");
+            }
+        }
     }
     for (const auto& budget : budgets) {
         const Json extra = {{"budget_bytes", budget.second}, {"budget_of", budget.first}};

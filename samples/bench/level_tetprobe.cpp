@@ -63,4 +63,31 @@ LevelResult evaluate_tetprobe(const Level& level, const std::vector<float>& posi
     return r;
 }
 
+size_t tetprobe_store_bytes(const Level& level, const std::vector<float>& positions, const std::vector<float>& sh,
+                            size_t count, const StoreLayout& layout) {
+    tp_build_options options;
+    tp_build_options_init(&options);
+    layout.apply(&options, level.handle.get());
+    tp_store* built = nullptr;
+    if (tp_store_build(positions.data(), 0, sh.data(), 0, count, &options, &built) != TP_OK)
+        throw std::runtime_error(level.name + ": tp_store_build (" + layout.id + "): " + tp_last_error());
+    std::unique_ptr<tp_store, tp_status (*)(tp_store*)> owner(built, tp_store_release);
+    const void* blob = nullptr;
+    size_t size = 0;
+    tp_store_blob(built, &blob, &size);
+    return size;
+}
+
+size_t tetprobe_count_within(const Level& level, const std::vector<float>& positions, const std::vector<float>& sh,
+                             size_t budget, const StoreLayout& layout) {
+    size_t lo = 4, hi = positions.size() / 3;  // the answer lies in [lo, hi] once lo fits
+    if (hi < lo || tetprobe_store_bytes(level, positions, sh, lo, layout) > budget) return 0;
+    if (tetprobe_store_bytes(level, positions, sh, hi, layout) <= budget) return hi;
+    while (hi - lo > 1) {  // lo fits, hi does not
+        const size_t mid = lo + (hi - lo) / 2;
+        (tetprobe_store_bytes(level, positions, sh, mid, layout) <= budget ? lo : hi) = mid;
+    }
+    return lo;
+}
+
 }  // namespace bench

@@ -136,7 +136,8 @@ class Report:
                 "an indirection grid, 8-bit); 4 nearest probes (inverse distance, without and with damping) on the "
                 "placed set.", ""]
         out += ["**Summary** (compact layout; ratio > 1: tetprobe has less error than the best grid peer at equal "
-                "memory):", ""]
+                "memory; the last two columns: at the same bytes, the layout that holds the most placed probes of "
+                "one placement order, usually the smallest, against the same peer):", ""]
         out += table(report_levels.SUMMARY_HEADER, report_levels.summary_rows(doc)) + [""]
         for level in doc.get("levels", []):
             if level.get("not_run"):
@@ -437,6 +438,11 @@ class Report:
                 r = rows_of_level[-1]
                 rows.append(("best grid peer / tetprobe placed at equal memory (RMS), %s, %s probes, compact" % (
                     level["name"], num(r["target"])), num(r["ratio_placed"]) + "x", "levels.json"))
+            at_bytes = [r for r in report_levels.best_layout_rows(level) if r["ratio"]]
+            if at_bytes:
+                r = at_bytes[-1]
+                rows.append(("best grid peer / tetprobe's best layout at equal memory (RMS), %s, %s bytes (%s)" % (
+                    level["name"], num(r["bytes"]), r["best"]["layout"]), num(r["ratio"]) + "x", "levels.json"))
         bake = self.docs.get("bake")
         if bake:
             for c in bake.get("culling", []):

@@ -54,6 +54,26 @@ def equal_memory(level):
     return rows
 
 
+def best_layout_rows(level):
+    """Rows per compact budget (the bytes of the compact placed store of each count): every layout holding as
+    many probes of one placement order as fit (tetprobe_placed_at_bytes), the best of them, the best grid peer
+    built at the same bytes and the ratio. Empty for a run without those results. Each row is a dict."""
+    results = level.get("results", [])
+    rows = []
+    for placed in [r for r in results if r["method"] == "tetprobe_placed" and r["layout"] == "compact"]:
+        budget_of = "tetprobe placed compact %s" % placed.get("target")
+        fits = [r for r in results if r["method"] == "tetprobe_placed_at_bytes" and r.get("budget_of") == budget_of]
+        if not fits:
+            continue
+        peers = [r for r in results if r["method"] in GRID_PEERS and r.get("budget_of") == budget_of]
+        best = min(fits, key=lambda r: r["rms_error"])
+        best_peer = min(peers, key=lambda r: r["rms_error"]) if peers else None
+        rows.append({"level": level["name"], "budget_of": budget_of, "count": placed.get("target"),
+                     "bytes": placed["bytes"], "fits": fits, "best": best, "best_peer": best_peer,
+                     "ratio": best_peer["rms_error"] / best["rms_error"] if best_peer and best["rms_error"] else None})
+    return rows
+
+
 def level_title(level):
     """'aggressor (3,271 triangles, 84 light entities + sun)'."""
     return "%s (%s triangles, %s light entities + sun)" % (level["name"], _num(level.get("triangles")),
@@ -61,16 +81,19 @@ def level_title(level):
 
 
 def summary_rows(doc, layout="compact"):
-    """One table row per level and probe count, for the README: the given layout."""
+    """One table row per level and probe count, for the README: the given layout, and tetprobe's best layout
+    at the same bytes."""
     out = []
     for level in doc.get("levels", []):
         if level.get("not_run"):
-            out.append([level.get("name", "?"), "not run: %s" % level["not_run"]] + ["-"] * 6)
+            out.append([level.get("name", "?"), "not run: %s" % level["not_run"]] + ["-"] * 8)
             continue
+        best_at = {row["count"]: row for row in best_layout_rows(level)} if layout == "compact" else {}
         for row in equal_memory(level):
             if row["layout"] != layout:
                 continue
             peer, choice, placed = row["best_peer"], row["best_choice"], row["placed"]
+            at = best_at.get(row["target"])
             out.append([
                 level_title(level),
                 _num(row["target"]),
@@ -80,13 +103,17 @@ def summary_rows(doc, layout="compact"):
                 "%s %s / %s" % (PEER_NAMES.get(peer["method"], peer["method"]), _num(peer["rms_error"]),
                                 _num(peer["p95_error"])) if peer else "-",
                 _num(row["ratio_placed"]) + "x" if row["ratio_placed"] else "-",
-                _num(row["ratio_best"]) + "x" if row["ratio_best"] else "-"])
+                _num(row["ratio_best"]) + "x" if row["ratio_best"] else "-",
+                "%s, %s probes, %s" % (at["best"]["layout"], _num(at["best"]["probes"]), _num(at["best"]["rms_error"]))
+                if at else "-",
+                _num(at["ratio"]) + "x" if at and at["ratio"] else "-"])
     return out
 
 
 SUMMARY_HEADER = [("level", "<"), ("probes", ">"), ("bytes (resident)", ">"), ("tetprobe placed RMS / p95", ">"),
                   ("best tetprobe choice, RMS", ">"), ("best grid peer, same bytes, RMS / p95", ">"),
-                  ("peer / placed", ">"), ("peer / best choice", ">")]
+                  ("peer / placed", ">"), ("peer / best choice", ">"),
+                  ("tetprobe's best layout at these bytes: probes placed, RMS", ">"), ("peer / best layout", ">")]
 
 
 def level_section(level, settings, plot_lines):
@@ -129,6 +156,23 @@ def level_section(level, settings, plot_lines):
     out += _table([("layout", "<"), ("probes", ">"), ("bytes", ">"), ("placed RMS", ">"), ("placed p95", ">"),
                    ("best choice", ">"), ("best grid peer", ">"), ("peer p95", ">"), ("peer / placed, RMS", ">"),
                    ("peer / placed, p95", ">")], rows) + [""]
+    at_bytes = best_layout_rows(level)
+    if at_bytes:
+        out += ["**At equal memory, each layout at its best** (at the bytes of the compact placed store of each count, "
+                "every layout holds as many probes of one placement order as fit; the best grid peer is the one built "
+                "at those bytes):", ""]
+        rows = []
+        for row in at_bytes:
+            for r in row["fits"]:
+                rows.append([_num(row["bytes"]), "compact %s" % _num(row["count"]), r["layout"], _num(r["probes"]),
+                             _num(r["bytes"]), _num(r.get("resident_bytes")), _num(r["rms_error"]), _num(r["p95_error"]),
+                             "%s %s" % (PEER_NAMES.get(row["best_peer"]["method"], row["best_peer"]["method"]),
+                                        _num(row["best_peer"]["rms_error"])) if row["best_peer"] else "-",
+                             _num(row["best_peer"]["rms_error"] / r["rms_error"]) + "x"
+                             if row["best_peer"] and r["rms_error"] else "-"])
+        out += _table([("budget bytes", ">"), ("budget of", "<"), ("layout", "<"), ("probes", ">"), ("bytes", ">"),
+                       ("resident", ">"), ("RMS", ">"), ("p95", ">"), ("best grid peer", ">"), ("peer / this", ">")],
+                      rows) + [""]
     out += plot_lines + [""]
     out += ["Every method (bytes: what ships; resident: in memory after loading; s: placement or validity test, bake, "
             "build):", ""]

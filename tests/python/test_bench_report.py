@@ -220,7 +220,7 @@ def test_real_levels_summary_is_the_best_grid_peer_over_tetprobe_at_equal_memory
     checked = 0
     for placed in [r for r in results if r["method"] == "tetprobe_placed"]:
         budget_of = "tetprobe placed %s %s" % (placed["layout"], placed["target"])
-        peers = [r for r in results if r.get("budget_of") == budget_of]
+        peers = [r for r in results if r.get("budget_of") == budget_of and r["method"] != "tetprobe_placed_at_bytes"]
         assert {p["method"] for p in peers} >= {"grid_half", "grid_apv8"}
         for p in peers:  # every peer at most the bytes of the store it is compared with
             assert p["bytes"] <= placed["bytes"] == p["budget_bytes"]
@@ -231,7 +231,7 @@ def test_real_levels_summary_is_the_best_grid_peer_over_tetprobe_at_equal_memory
         ratio = report.num(best["rms_error"] / placed["rms_error"]) + "x"
         assert [line for line in section.splitlines() if line.startswith(row)][0].split(" | ")[8] == ratio
         checked += 1
-    assert checked == 4
+    assert checked == len(_levels(directory)["settings"]["layouts"]) * len(_levels(directory)["settings"]["counts"])
     # Every method's row, the level's facts and the import and metric definitions are there.
     for label in {r["label"] for r in results}:
         assert "| %s |" % label in section
@@ -242,6 +242,34 @@ def test_real_levels_summary_is_the_best_grid_peer_over_tetprobe_at_equal_memory
     digest = (tmp_path / "readme_section.md").read_text()
     assert "| fixture_arena (%s triangles, %s light entities + sun) | 100 |" % (
         report.num(level["triangles"]), level["light_entities"]) in digest
+
+
+def test_real_levels_best_layout_at_equal_memory_fits_the_compact_budget_and_is_the_least_error(tmp_path, no_plots):
+    directory = _results(tmp_path)
+    text = _run(directory)
+    level = _levels(directory)["levels"][0]
+    results = level["results"]
+    layouts = [l["id"] for l in _levels(directory)["settings"]["layouts"]]
+    summary = [line for line in _section(text, SECTIONS[0]).splitlines()
+               if line.startswith("| %s (" % level["name"])]
+    compact = [r for r in results if r["method"] == "tetprobe_placed" and r["layout"] == "compact"]
+    assert compact and len(summary) == len(compact)
+    for placed, line in zip(compact, summary):
+        budget_of = "tetprobe placed compact %s" % placed["target"]
+        fits = [r for r in results if r["method"] == "tetprobe_placed_at_bytes" and r["budget_of"] == budget_of]
+        assert sorted(r["layout"] for r in fits) == sorted(layouts)
+        for r in fits:  # each layout within the budget, the compact one at the placed count itself
+            assert r["bytes"] <= r["budget_bytes"] == placed["bytes"]
+            if r["layout"] == "compact":
+                assert r["probes"] >= placed["probes"]
+        best = min(fits, key=lambda r: r["rms_error"])
+        peer = min([r for r in results if r.get("budget_of") == budget_of
+                    and r["method"] in ("grid_half", "grid_apv8", "bricks_apv8")], key=lambda r: r["rms_error"])
+        cells = line.split(" | ")
+        assert cells[-2] == "%s, %s probes, %s" % (best["layout"], report.num(best["probes"]), report.num(best["rms_error"]))
+        assert cells[-1] == report.num(peer["rms_error"] / best["rms_error"]) + "x |"
+    ratios = _section(text, "## 8. Headline ratios")
+    assert "best grid peer / tetprobe's best layout at equal memory (RMS), %s" % level["name"] in ratios
 
 
 def test_a_real_level_or_peer_that_did_not_run_is_said(tmp_path, no_plots):
