@@ -36,8 +36,8 @@ struct LocateKernel {
     // count <= kMaxBatchGroup queries, one after the other with their loads asked for ahead, out as above.
     void (*locate_batch)(const Store::Impl& store, size_t count, const float (*local)[3], const int32_t* hints,
                          Location* out);
-    // locate and answer_sh in one, for a store without leak control (null for one with it: its weights are
-    // weighed between the two): from *hint as above, the SH into out_sh and the answer's cell into *hint.
+    // locate and answer_sh in one, without leak control (a store with it answers the queries in cells with a
+    // blocked pair again, store_queries.cpp): from *hint as above, the SH into out_sh and the cell into *hint.
     // The lean walk's answer goes straight to the blend, with no Location in between.
     Status (*interpolate)(const Store::Impl& store, const float local[3], int32_t* hint, float out_sh[27]);
     // count <= kMaxBatchGroup of them: hints[i] in and out, out_sh[i] (27 floats each), status[i].

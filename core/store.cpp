@@ -167,6 +167,7 @@ std::unique_ptr<Store> Store::load(const void* data, size_t size) {
     if (h.layout != kLayoutRebuilt || s.dimension < 3) validate_cell_records(s);
     decode_normals(s, section(kSectionNormals));
     if (s.leak_offsets) {
+        decode_leak_planes(s);
         check_leak_planes(s);
         mark_blocked_cells(s);
     }

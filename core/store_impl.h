@@ -64,6 +64,7 @@ struct Store::Impl {
     const uint32_t* leak_offsets = nullptr;  // probe_count + 1; non-null = leak control on
     const LeakEdge* leak_edges = nullptr;
     AlignedBytes leak_cells;                 // per cell 1 if two of its probes cannot see each other (built on load)
+    AlignedBytes leak_planes;                // per leak edge its two LeakPlanes, normals decoded (built on load)
 };
 
 }  // namespace tetprobe

@@ -1,8 +1,9 @@
 // The query front end: every query of a store — interpolate (with or without occlusion), locate,
 // weights and their batches — goes through the kernels the store chose at load (locate_kernel.h): to the
 // store's frame, locate, weigh for leaks (answer()), then the caller's outputs. Interpolations without
-// occlusion on a store without leak control take the kernel's fused locate + blend, which blends the lean
-// walk's answer straight into the caller's buffer (the same bits as locate + answer_sh). Nothing here
+// occlusion take the kernel's fused locate + blend, which blends the lean walk's answer straight into the
+// caller's buffer (the same bits as locate + answer_sh); with leak control, a query whose cell holds a
+// blocked pair is then answered again through the pipeline from its cell (reweigh_blocked). Nothing here
 // allocates, throws or starts a thread: a batch runs on the calling thread (an engine splits a frame
 // into ranges for its own workers, see tp_batch_options).
 #include "core/leak_control.h"
@@ -36,6 +37,18 @@ void answer_one(const Store::Impl& s, const float world[3], int32_t hint, Locati
     float local[1][3];
     local_position(s, world, local[0]);
     answer(s, 1, local, &hint, &loc);
+}
+
+// After the fused kernel (locate + blend without leak control): a query whose cell holds a blocked pair
+// is located again from that cell (which holds it, so the walk stops there), weighed for leaks and blended
+// again into out_sh. Answers in other cells are already the pipeline's, bit for bit.
+void reweigh_blocked(const Store::Impl& s, const float local[3], int32_t* cell, Status* status, float out_sh[27]) {
+    if (!s.leak_offsets || *status != Status::ok || *cell < 0 || !s.leak_cells.get()[*cell]) return;
+    Location loc;
+    const float at[1][3] = {{local[0], local[1], local[2]}};
+    answer(s, 1, at, cell, &loc);
+    *cell = loc.cell;
+    *status = answer_sh(s, loc, out_sh, nullptr);
 }
 
 // The four probes' SH records, decoded as they are weighed (the encoding's kernel, sh_blend.h).
@@ -110,7 +123,8 @@ Status run_batch(const Store::Impl& s, size_t count, const float* positions, siz
     return failure;
 }
 
-// A batch of interpolations on the store's fused kernel (a store without leak control, no occlusion):
+// A batch of interpolations on the store's fused kernel (no occlusion; with leak control, the queries in
+// cells with a blocked pair answered again, reweigh_blocked):
 // groups as run_batch, each query's SH blended straight into the caller's buffer when it is aligned for
 // floats (else into a local one copied out: a misaligned stride is legal). Same answers as run_batch.
 Status run_interpolate_batch(const Store::Impl& s, size_t count, const float* positions, size_t position_stride,
@@ -136,11 +150,13 @@ Status run_interpolate_batch(const Store::Impl& s, size_t count, const float* po
             for (size_t j = 0; j < n; ++j) {
                 cell[j] = chained;
                 status[j] = s.locate.interpolate(s, local[j], &cell[j], target[j]);
+                reweigh_blocked(s, local[j], &cell[j], &status[j], target[j]);
                 chained = cell[j];
             }
         }
         for (size_t j = 0; j < n; ++j) {
             const size_t i = group + j;
+            reweigh_blocked(s, local[j], &cell[j], &status[j], target[j]);
             if (hints) std::memcpy(strided(hints, i, hint_stride), &cell[j], sizeof cell[j]);
             if (!direct) std::memcpy(strided(out_sh, i, sh_stride), scratch[j], sizeof scratch[j]);
             if (status[j] != Status::ok && first == count) first = i, failure = status[j];
@@ -182,7 +198,8 @@ Status Store::interpolate(const float world_position[3], int32_t* hint, float ou
         float local[3];
         local_position(s, world_position, local);
         int32_t cell = hint ? *hint : -1;
-        const Status status = s.locate.interpolate(s, local, &cell, out_sh);
+        Status status = s.locate.interpolate(s, local, &cell, out_sh);
+        reweigh_blocked(s, local, &cell, &status, out_sh);
         if (hint) *hint = cell;
         return status;
     }

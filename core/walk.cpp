@@ -263,7 +263,6 @@ LocateKernel choose_locate_kernel(const Store::Impl& store, InstructionSet instr
     const BatchKernel batch = detect_batch_kernel();
     LocateKernel kernel = store.index32 ? kernel_for_dimension<uint32_t>(store.dimension, instruction_set, batch)
                                         : kernel_for_dimension<uint16_t>(store.dimension, instruction_set, batch);
-    if (store.leak_offsets) kernel.interpolate = nullptr, kernel.interpolate_batch = nullptr;  // weighed between locate and blend
     return kernel;
 }
 

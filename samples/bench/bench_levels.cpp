@@ -27,6 +27,14 @@
 //                                "p95": {"placed", "random", "lattice": float}}]}]}
 //       (errors: RMS of the metric, p95 its 95th percentile; reported: the placement's curve at that count, NaN
 //       written as null).
+//   tetprobe_bench levels leakpoints --level NAME [--count N] --out DIR
+//       Leak control point by point: the placed set of N probes (default: all candidates), compact layout,
+//       with and without leak control, at each evaluation point. Writes DIR/leak_points_NAME_N|all.csv: per
+//       point its position, the reference and both answers (mean luminance irradiance over the 6 normals over
+//       the level's mean), both squared errors (summed over the 6 normals, the rms is the root of their mean
+//       over points x 6), and for each of the cell's 4 probes (as the store without leak control locates
+//       them) its index, weight without and with leak control, its light (as the answers), whether it sees
+//       the point (an Embree ray) and its distance.
 //   tetprobe_bench levels prepare --level NAME...   only prepares (and caches) the levels
 //   tetprobe_bench levels survey                    every level of --maps: triangles, lights, spawns, size
 //
@@ -83,7 +91,10 @@
 #include "level_tetprobe.h"
 #include "part_output.h"
 #include "probe_choices.h"
+#include "level_metric.h"
 #include "store_layouts.h"
+
+#include "bake/ray_caster.h"
 
 #include <nlohmann/json.hpp>
 
@@ -94,6 +105,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 
@@ -109,6 +121,7 @@ struct LevelArgs {
     std::string maps = "build/levels/maps", cache = "build/levels/cache", out, probes, layout;
     bool json = false, quick = false;
     uint32_t threads = 0;
+    uint32_t count = 0;  // leakpoints: the placed count (0: all candidates)
 };
 
 LevelArgs parse_level_args(int argc, char** argv) {
@@ -131,6 +144,7 @@ LevelArgs parse_level_args(int argc, char** argv) {
         else if (arg == "--cache") a.cache = value();
         else if (arg == "--out") a.out = value();
         else if (arg == "--probes") a.probes = value();
+        else if (arg == "--count") a.count = uint32_t(std::stoul(value()));
         else if (arg == "--layout") a.layout = value();
         else if (arg == "--threads") a.threads = uint32_t(std::stoul(value()));
         else if (arg == "--json") a.json = true;
@@ -565,6 +579,92 @@ int run_prepare(const LevelArgs& a, const LevelSettings& settings) {
     return 0;
 }
 
+// Leak control point by point (see the top of this file: levels leakpoints).
+int run_leak_points(const LevelArgs& a, const LevelSettings& settings) {
+    if (a.levels.size() != 1 || a.out.empty())
+        throw std::invalid_argument("levels leakpoints needs one --level and --out DIR");
+    Level level;
+    prepare_level(level_path(a, a.levels[0]), a.cache, settings, a.threads, &level);
+    const PlacementRules rules;
+    const CandidateSet candidates = find_candidates(level, rules, settings);
+    std::vector<float> positions = candidates.positions, sh = candidates.sh;
+    const uint32_t target = a.count;
+    if (target) {
+        const PlacementRun run = placement_run(level, rules, target, a.threads);
+        const size_t n = std::min<size_t>(target, run.positions.size() / 3);
+        positions.assign(run.positions.begin(), run.positions.begin() + 3 * std::ptrdiff_t(n));
+        sh = sh_of(level, candidates, positions, settings);
+    }
+    const size_t count = positions.size() / 3;
+    using StoreHandle = std::unique_ptr<tp_store, tp_status (*)(tp_store*)>;
+    StoreHandle stores[2] = {StoreHandle(nullptr, tp_store_release), StoreHandle(nullptr, tp_store_release)};
+    for (int k = 0; k < 2; ++k) {
+        tp_build_options options;
+        tp_build_options_init(&options);
+        find_store_layout(k ? "compact_leak" : "compact")->apply(&options, level.handle.get());
+        tp_store* built = nullptr;
+        if (tp_store_build(positions.data(), 0, sh.data(), 0, count, &options, &built) != TP_OK)
+            throw std::runtime_error(level.name + ": tp_store_build: " + tp_last_error());
+        stores[k].reset(built);
+    }
+    const std::vector<float> probe_light = luminance6(sh.data(), count);
+    const double origin[3] = {0, 0, 0};
+    const tetprobe::RayCaster caster(level.scene, origin);
+    const auto mean6 = [&](const float* v) { return (v[0] + v[1] + v[2] + v[3] + v[4] + v[5]) / 6.0 / level.mean; };
+    const std::string path = a.out + "/leak_points_" + level.name + "_" + (target ? std::to_string(target) : "all") + ".csv";
+    fs::create_directories(a.out);
+    std::ofstream csv(path);
+    csv << "point,x,y,z,reference,without,with,squared_error_without,squared_error_with";
+    for (int j = 0; j < 4; ++j)
+        csv << ",probe" << j << ",weight_without" << j << ",weight_with" << j << ",light" << j << ",sees_query" << j
+            << ",distance" << j;
+    csv << "\n";
+    double sum[2] = {0, 0};
+    for (size_t i = 0; i < level.points.size() / 3; ++i) {
+        const float* q = &level.points[3 * i];
+        float out[2][27], weights[2][4];
+        uint32_t probes[2][4];
+        for (int k = 0; k < 2; ++k) {
+            int32_t hint = -1;
+            tp_store_interpolate(stores[k].get(), q, &hint, out[k]);
+            hint = -1;
+            tp_store_weights(stores[k].get(), q, &hint, probes[k], weights[k]);
+        }
+        const std::vector<float> reference = luminance6(&level.reference[27 * i], 1);
+        double squared[2] = {0, 0};
+        std::vector<float> light[2];
+        for (int k = 0; k < 2; ++k) {
+            light[k] = luminance6(out[k], 1);
+            for (int c = 0; c < 6; ++c) squared[k] += std::pow((light[k][c] - reference[c]) / level.mean, 2);
+            sum[k] += squared[k];
+        }
+        char row[256];
+        std::snprintf(row, sizeof row, "%zu,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g", i, q[0], q[1], q[2],
+                      mean6(reference.data()), mean6(light[0].data()), mean6(light[1].data()), squared[0], squared[1]);
+        csv << row;
+        for (int j = 0; j < 4; ++j) {
+            const uint32_t p = probes[0][j];
+            float with = 0;  // the same probe's weight in the leak-control store (unused slots repeat a probe)
+            for (int m = 0; m < 4; ++m)
+                if (probes[1][m] == p) with = std::max(with, weights[1][m]);
+            float d[3];
+            double length = 0;
+            for (int c = 0; c < 3; ++c) d[c] = positions[3 * size_t(p) + c] - q[c], length += double(d[c]) * d[c];
+            length = std::sqrt(length);
+            for (float& c : d) c = float(c / length);
+            const bool sees = !(length > 0) || !caster.occluded(q, d, 0.0f, float(length), -1);
+            std::snprintf(row, sizeof row, ",%u,%.6g,%.6g,%.6g,%d,%.4g", p, weights[0][j], with,
+                          mean6(&probe_light[6 * size_t(p)]), sees ? 1 : 0, length);
+            csv << row;
+        }
+        csv << "\n";
+    }
+    const size_t values = level.points.size() / 3 * 6;
+    std::printf("%s, %zu probes: rms %.4f without, %.4f with leak control; wrote %s\n", level.name.c_str(), count,
+                std::sqrt(sum[0] / values), std::sqrt(sum[1] / values), path.c_str());
+    return 0;
+}
+
 }  // namespace
 
 int run_levels_bench(int argc, char** argv) {
@@ -574,9 +674,10 @@ int run_levels_bench(int argc, char** argv) {
         if (a.command == "eval") return run_eval(a, settings);
         if (a.command == "prepare") return run_prepare(a, settings);
         if (a.command == "survey") return run_survey(a);
+        if (a.command == "leakpoints") return run_leak_points(a, settings);
         if (a.command == "placement") return run_placement_part(a, settings);
         if (a.command.empty() || a.command == "run") return run_part(a, settings);
-        std::fprintf(stderr, "usage: tetprobe_bench levels [run]|eval|placement|prepare|survey ... (see samples/bench/bench_levels.cpp)\n");
+        std::fprintf(stderr, "usage: tetprobe_bench levels [run]|eval|placement|leakpoints|prepare|survey ... (see samples/bench/bench_levels.cpp)\n");
         return 2;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "tetprobe_bench levels: %s\n", e.what());

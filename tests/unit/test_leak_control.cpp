@@ -587,3 +587,42 @@ TEST_CASE("leak: batches weigh by visibility as single queries do, bit for bit",
     }
     CHECK(weighed > 100);  // the wall changes many answers: the batch did weigh them
 }
+
+TEST_CASE("leak: interpolations take the fused kernel and answer blocked cells again, as locate-weigh-blend does, "
+          "bit for bit", "[leak][batch]") {
+    // Probes with distinct SH, so that a wrong weight shows in the answer.
+    const Scene scene = wall_scene();
+    const std::vector<float> probes = lattice_probes();
+    const size_t count = probes.size() / 3;
+    std::mt19937 random(41);
+    std::uniform_real_distribution<float> value(-1.0f, 1.0f);
+    std::vector<float> sh(27 * count);
+    for (float& x : sh) x = value(random);
+    BuildSettings settings;
+    settings.scene = &scene;
+    const std::unique_ptr<Store> leak = load(build_store_data(probes.data(), 12, sh.data(), 108, count, settings));
+    const std::unique_ptr<Store> plain = load(build_store_data(probes.data(), 12, sh.data(), 108, count, BuildSettings()));
+    std::uniform_real_distribution<float> u(-2.2f, 2.2f);
+    const size_t n = 3000;
+    std::vector<float> points(3 * n);
+    for (float& x : points) x = u(random);
+    std::vector<int32_t> hints(n, -1);
+    std::vector<float> batch(27 * n);
+    REQUIRE(leak->interpolate_batch(n, points.data(), 12, hints.data(), 4, batch.data(), 108, BatchSettings{}, nullptr) ==
+            Status::ok);
+    size_t weighed = 0;
+    for (size_t i = 0; i < n; ++i) {
+        float single[27], piped[27], occlusion[4], unweighed[27];
+        int32_t hint = -1, piped_hint = -1, plain_hint = -1;
+        REQUIRE(leak->interpolate(&points[3 * i], &hint, single) == Status::ok);
+        // Asking for occlusion takes the pipeline: locate, weigh for leaks, blend.
+        REQUIRE(leak->interpolate(&points[3 * i], &piped_hint, piped, occlusion) == Status::ok);
+        REQUIRE(hint == piped_hint);
+        REQUIRE(hint == hints[i]);
+        REQUIRE(std::memcmp(single, piped, sizeof single) == 0);
+        REQUIRE(std::memcmp(single, &batch[27 * i], sizeof single) == 0);
+        REQUIRE(plain->interpolate(&points[3 * i], &plain_hint, unweighed) == Status::ok);
+        weighed += std::memcmp(single, unweighed, sizeof single) != 0;
+    }
+    CHECK(weighed > 100);  // the wall changes many answers
+}
