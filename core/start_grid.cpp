@@ -30,8 +30,8 @@ uint32_t walk_inner_cells_3d(const StoreData& data, const float* padded, const f
         const float* const x[4] = {padded + size_t(slots[0]) * 4, padded + size_t(slots[1]) * 4,
                                    padded + size_t(slots[2]) * 4, padded + size_t(slots[3]) * 4};
         // The walk's next cell is one of these four: fetch their slots while the kernel runs (on a
-        // large set each step would otherwise wait on a cache and TLB miss). A link past the inner
-        // cells is clamped to the last cell, which is never read here.
+        // large set each step would otherwise wait on a cache and TLB miss). A missing link (kNone32,
+        // a store without outer cells) is clamped to the last cell, so every address is in the arrays.
         const uint32_t* links = &data.cell_neighbours[size_t(cell) * 4];
         for (uint32_t k = 0; k < 4; ++k) {
             const size_t to = std::min<size_t>(links[k], last);
