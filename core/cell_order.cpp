@@ -48,9 +48,9 @@ void radix_sort_by_key(std::vector<uint32_t>& keys, std::vector<uint32_t>& items
 
 // Within each run of equal keys (after a stable sort), orders the cells by their vertex slots.
 void order_equal_keys_by_vertices(const std::vector<uint32_t>& keys, std::vector<uint32_t>& items,
-                                  const std::vector<uint32_t>& cell_vertices) {
+                                  const CellSource& source) {
     auto slots = [&](uint32_t c) {
-        const uint32_t* v = &cell_vertices[size_t(c) * 4];
+        const uint32_t* v = source.vertices(c);
         return std::tie(v[0], v[1], v[2], v[3]);
     };
     for (size_t i = 0; i < keys.size();) {
@@ -90,7 +90,18 @@ std::vector<uint32_t> curve_order(const std::vector<Eigen::Vector3d>& points, co
 }
 
 void order_cells_for_locality(StoreData& data) {
-    const uint32_t cells = data.cell_count(), inner = data.inner_cell_count;
+    const uint32_t inner = data.inner_cell_count;
+    std::vector<uint32_t> vertices, neighbours;
+    vertices.swap(data.cell_vertices);
+    neighbours.swap(data.cell_neighbours);
+    const CellSource source{vertices.data(), neighbours.data(), vertices.data() + size_t(inner) * 4,
+                            neighbours.data() + size_t(inner) * 4, inner, uint32_t(vertices.size() / 4)};
+    order_cells_for_locality(data, source);
+}
+
+void order_cells_for_locality(StoreData& data, const CellSource& source) {
+    const uint32_t cells = source.cells, inner = source.inner;
+    data.inner_cell_count = inner;
     double lo[3], scale[3], centre[3];
     for (int a = 0; a < 3; ++a) {
         lo[a] = data.bounds_min[a];
@@ -103,7 +114,6 @@ void order_cells_for_locality(StoreData& data) {
     // (about 1/2000 of the bounds per axis, finer than any walk cares about). Plain IEEE arithmetic
     // (no library functions), so a loader on another platform computes the same keys.
     const float* positions = data.positions.data();
-    const uint32_t* slots = data.cell_vertices.data();
     std::vector<uint32_t> keys(cells), old_of_new(cells);
     // The inner cells nearest the centre, in the old order (usually one; all of them on a tie).
     std::vector<uint32_t> nearest_cells;
@@ -111,7 +121,7 @@ void order_cells_for_locality(StoreData& data) {
     const uint32_t corners_inner = data.dimension + 1, corners_outer = data.dimension;
     const double inverse_inner = 1.0 / corners_inner, inverse_outer = corners_outer ? 1.0 / corners_outer : 0.0;
     for (uint32_t c = 0; c < cells; ++c) {
-        const uint32_t* v = slots + size_t(c) * 4;
+        const uint32_t* v = source.vertices(c);
         const uint32_t corners = c < inner ? corners_inner : corners_outer;
         const double inverse = c < inner ? inverse_inner : inverse_outer;
         double sum[3] = {0, 0, 0};
@@ -150,8 +160,8 @@ void order_cells_for_locality(StoreData& data) {
     radix_sort_by_key(outer_keys, outer_order);
     // Cells with equal keys (and equally near the centre below) go by their vertex slots, so the order
     // depends only on which cells there are.
-    order_equal_keys_by_vertices(inner_keys, inner_order, data.cell_vertices);
-    order_equal_keys_by_vertices(outer_keys, outer_order, data.cell_vertices);
+    order_equal_keys_by_vertices(inner_keys, inner_order, source);
+    order_equal_keys_by_vertices(outer_keys, outer_order, source);
     std::copy(inner_order.begin(), inner_order.end(), old_of_new.begin());
     std::copy(outer_order.begin(), outer_order.end(), old_of_new.begin() + inner);
     std::vector<uint32_t> new_of_old(cells);
@@ -170,17 +180,26 @@ void order_cells_for_locality(StoreData& data) {
 
     // Scattered in the old order: the reads stay sequential and the scattered writes do not stall
     // (a gather in the new order waited on a cache miss per cell: half of this function's time).
-    std::vector<uint32_t> vertices(data.cell_vertices.size()), neighbours(data.cell_neighbours.size());
+    // Written once, straight from the source (the rebuild's mesh and outer cells need no copy first).
+    data.cell_vertices.resize(size_t(cells) * 4);
+    data.cell_neighbours.resize(size_t(cells) * 4);
+    uint32_t* const vertices = data.cell_vertices.data();
+    uint32_t* const neighbours = data.cell_neighbours.data();
+    constexpr uint32_t kAhead = 8;  // cells: the scattered writes' lines are fetched this far ahead
     for (uint32_t o = 0; o < cells; ++o) {
+        if (o + kAhead < cells) {
+            const size_t ahead = size_t(new_of_old[o + kAhead]) * 4;
+            __builtin_prefetch(vertices + ahead, 1);
+            __builtin_prefetch(neighbours + ahead, 1);
+        }
         const uint32_t n = new_of_old[o];
+        const uint32_t *from_vertices = source.vertices(o), *from_neighbours = source.neighbours(o);
         for (size_t k = 0; k < 4; ++k) {
-            vertices[size_t(n) * 4 + k] = data.cell_vertices[size_t(o) * 4 + k];
-            const uint32_t link = data.cell_neighbours[size_t(o) * 4 + k];
+            vertices[size_t(n) * 4 + k] = from_vertices[k];
+            const uint32_t link = from_neighbours[k];
             neighbours[size_t(n) * 4 + k] = link < cells ? new_of_old[link] : link;
         }
     }
-    data.cell_vertices = std::move(vertices);
-    data.cell_neighbours = std::move(neighbours);
 }
 
 }  // namespace tetprobe

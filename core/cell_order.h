@@ -26,6 +26,28 @@ std::vector<uint32_t> curve_order(const std::vector<Eigen::Vector3d>& points, co
 // for the same probes end up identical. Neighbour links follow. Needs positions, bounds and cells.
 void order_cells_for_locality(StoreData& data);
 
+// Where the cells to order are: inner cells 0..inner-1 and outer cells inner..cells-1, 4 slots each,
+// in two arrays that need not be one (the rebuild's mesh and its outer cells, so that the cells are
+// copied once, into their ordered places).
+struct CellSource {
+    const uint32_t* inner_vertices;
+    const uint32_t* inner_neighbours;
+    const uint32_t* outer_vertices;
+    const uint32_t* outer_neighbours;
+    uint32_t inner, cells;
+    const uint32_t* vertices(uint32_t c) const {
+        return c < inner ? inner_vertices + size_t(c) * 4 : outer_vertices + size_t(c - inner) * 4;
+    }
+    const uint32_t* neighbours(uint32_t c) const {
+        return c < inner ? inner_neighbours + size_t(c) * 4 : outer_neighbours + size_t(c - inner) * 4;
+    }
+};
+
+// The same order, reading the cells from source and writing them, ordered, to data's inner_cell_count,
+// cell_vertices and cell_neighbours (data's positions and bounds as above; source must not point into
+// data's cell arrays).
+void order_cells_for_locality(StoreData& data, const CellSource& source);
+
 // 63-bit Morton code of p quantised over [lo, hi] (21 bits per axis, x lowest).
 uint64_t morton_code(const double p[3], const double lo[3], const double hi[3]);
 

@@ -34,9 +34,23 @@ SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t d
     }
 }
 
+namespace {
+
+// The outer cells over mesh's hull, linked to it, unless data does not extrapolate.
+OuterCells outer_cells_over(SimplexMesh& mesh, const StoreData& data) {
+    if (!(data.flags & kFlagNoExtrapolation) && mesh.dimension >= 1) return build_outer_cells(mesh, find_hull_facets(mesh));
+    return OuterCells{};
+}
+
+static_assert(sizeof(CellSlots) == 4 * sizeof(uint32_t), "cells are read as 4 packed slots");
+const uint32_t* packed_slots(const std::vector<CellSlots>& cells) {
+    return cells.empty() ? nullptr : cells.front().data();
+}
+
+}  // namespace
+
 void store_cells(SimplexMesh mesh, StoreData& data) {
-    OuterCells outer;
-    if (!(data.flags & kFlagNoExtrapolation) && mesh.dimension >= 1) outer = build_outer_cells(mesh, find_hull_facets(mesh));
+    const OuterCells outer = outer_cells_over(mesh, data);
     const size_t inner = mesh.cell_count(), cells = inner + outer.vertices.size();
     data.inner_cell_count = uint32_t(inner);
     data.cell_vertices.resize(cells * 4);
@@ -49,6 +63,14 @@ void store_cells(SimplexMesh mesh, StoreData& data) {
         std::copy_n(outer.vertices[c].begin(), 4, &data.cell_vertices[at]);
         std::copy_n(outer.neighbours[c].begin(), 4, &data.cell_neighbours[at]);
     }
+}
+
+void store_cells_in_locality_order(SimplexMesh mesh, StoreData& data) {
+    const OuterCells outer = outer_cells_over(mesh, data);
+    const CellSource source{packed_slots(mesh.vertices), packed_slots(mesh.neighbours), packed_slots(outer.vertices),
+                            packed_slots(outer.neighbours), uint32_t(mesh.cell_count()),
+                            uint32_t(mesh.cell_count() + outer.vertices.size())};
+    order_cells_for_locality(data, source);
 }
 
 RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_t dimension, uint32_t axis,
@@ -67,8 +89,7 @@ RebuiltCells rebuild_cells(const float* positions, uint32_t probe_count, uint32_
         data.bounds_max[a] = bounds_max[a];
         data.grid[a] = grid[a];
     }
-    store_cells(inner_cells(positions, probe_count, dimension, axis, max_cells), data);
-    order_cells_for_locality(data);
+    store_cells_in_locality_order(inner_cells(positions, probe_count, dimension, axis, max_cells), data);
     fill_start_grid(data);
     RebuiltCells out;
     out.inner_cell_count = data.inner_cell_count;

@@ -32,6 +32,10 @@ SimplexMesh inner_cells(const float* positions, uint32_t probe_count, uint32_t d
 // numbering data's probes), with outer cells unless data.flags has kFlagNoExtrapolation.
 void store_cells(SimplexMesh mesh, StoreData& data);
 
+// Steps 2 and 3 at once: the same cells in the same order as store_cells then order_cells_for_locality
+// (data's positions and bounds set), written once into their ordered places instead of copied first.
+void store_cells_in_locality_order(SimplexMesh mesh, StoreData& data);
+
 struct RebuiltCells {
     uint32_t inner_cell_count = 0;
     std::vector<uint32_t> cell_vertices;    // 4 per cell (kNone32, kOuter32 as in StoreData)

@@ -131,6 +131,9 @@ private:
         for (size_t steps = 0; steps < cap; ++steps) {
             const Tet& cell = tets_[t];
             if (cell.v[3] == kInfinite) return t;  // entered across a hull facet p sees
+            // The next cell is one of the four neighbours: fetch them while the kernel runs.
+            TP_UNROLL_FULLY
+            for (uint32_t k = 0; k < 4; ++k) __builtin_prefetch(&tets_[cell.n[k] >> 2]);
             const float* const P[4] = {padded(cell.v[0]), padded(cell.v[1]), padded(cell.v[2]), padded(cell.v[3])};
             const Orientations o = TP_ORIENT_KERNEL::of(P, padded(p));
             uint32_t exit = 4;

@@ -24,10 +24,20 @@ namespace {
 template <class Kernel>
 uint32_t walk_inner_cells_3d(const StoreData& data, const float* padded, const float p[3], uint32_t cell) {
     const uint32_t inner = data.inner_cell_count;
+    const size_t last = data.cell_vertices.size() / 4 - 1;
     for (uint32_t step = 0; step < 4096; ++step) {
         const uint32_t* slots = &data.cell_vertices[size_t(cell) * 4];
         const float* const x[4] = {padded + size_t(slots[0]) * 4, padded + size_t(slots[1]) * 4,
                                    padded + size_t(slots[2]) * 4, padded + size_t(slots[3]) * 4};
+        // The walk's next cell is one of these four: fetch their slots while the kernel runs (on a
+        // large set each step would otherwise wait on a cache and TLB miss). A missing link (kNone32,
+        // a store without outer cells) is clamped to the last cell, so every address is in the arrays.
+        const uint32_t* links = &data.cell_neighbours[size_t(cell) * 4];
+        for (uint32_t k = 0; k < 4; ++k) {
+            const size_t to = std::min<size_t>(links[k], last);
+            __builtin_prefetch(data.cell_vertices.data() + to * 4);
+            __builtin_prefetch(data.cell_neighbours.data() + to * 4);
+        }
         const Orientations o = Kernel::of(x, p);
         uint32_t beyond = 4;  // a slot whose facet has p on its far side
         for (uint32_t k = 0; k < 4 && beyond == 4; ++k) {
