@@ -188,6 +188,19 @@ InsertionGain insertion_gain(const RoundState& s, uint32_t i) {
         }
     }
 
+    // Beyond the hull: the points between the outer cell's facet and the new probe fall in the new cell
+    // from the facet to it, where its coordinate is their height over its own (see above).
+    double facet[3][3], beyond = 0;
+    if (h.dimension == 3 && home >= h.inner_cell_count) {
+        uint32_t v[4], n[4];
+        s.store->cell(home, v, n);
+        if (v[3] == kOuter32 && v[0] < h.probe_count && v[1] < h.probe_count && v[2] < h.probe_count) {
+            for (int k = 0; k < 3; ++k) position_of(*s.store, v[k], facet[k]);
+            beyond = volume(facet[0], facet[1], facet[2], p);  // same sign as every point of the cell
+            if (!std::isfinite(beyond)) beyond = 0;
+        }
+    }
+
     size_t members = 0;
     for (uint32_t q : g.cavity) members += s.cell_start[q + 1] - s.cell_start[q];
     const size_t stride = std::max<size_t>(1, (members + kMaxGainSamples - 1) / kMaxGainSamples);
@@ -222,6 +235,11 @@ InsertionGain insertion_gain(const RoundState& s, uint32_t i) {
                 phi = cone_phi(cells, at, xl);
             } else {
                 phi = split_phi(s, x, i);
+                if (beyond != 0) {
+                    double xl[3];
+                    for (int a = 0; a < 3; ++a) xl[a] = s.local[3 * size_t(x) + size_t(a)];
+                    phi = std::min(phi, std::clamp(volume(facet[0], facet[1], facet[2], xl) / beyond, 0.0, 1.0));
+                }
             }
             add(x, phi, weight);
         }

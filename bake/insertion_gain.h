@@ -11,7 +11,9 @@
 // with both terms corrected for the bake's noise: E[r_x . r_i] holds the noise the two share through
 // common probes, E|r_i|^2 holds r_i's own; each is subtracted, so pure noise gains nothing on average.
 // Outside the hull and in sets of lower dimension the cell alone is split (phi from the barycentric
-// coordinates in the cell). A candidate whose gain does not stand out from its noise (gain below
+// coordinates in the cell); beyond the hull the new probe also joins the hull, so phi there is at most a
+// point's height above the outer cell's facet relative to the new probe's (the facet's points keep their
+// values, as the new cell from the facet to the probe interpolates them). A candidate whose gain does not stand out from its noise (gain below
 // kSignificance standard deviations) is chosen for coverage instead: the one that would take over the
 // most held-out volume.
 #pragma once

@@ -273,6 +273,22 @@ public:
     }
 
 private:
+    // Whether the members' summed squared residual exceeds their noise by more than its standard
+    // deviation: a sum over every member, so picking the largest of many noisy residuals does not make
+    // pure noise stand out.
+    static bool error_stands_out(const RoundState& s, const uint32_t* first, size_t members) {
+        double excess = 0, variance = 0;
+        for (size_t m = 0; m < members; ++m) {
+            const uint32_t x = first[m];
+            double rr = 0;
+            for (int k = 0; k < kSignalSize; ++k) rr += s.residual[kSignalSize * size_t(x) + size_t(k)] * s.residual[kSignalSize * size_t(x) + size_t(k)];
+            const double sx = s.noise[x], tx = std::max(0.0, rr - sx);
+            excess += rr - sx;
+            variance += (4.0 * tx * sx + 2.0 * sx * sx) / kSignalSize;
+        }
+        return excess > kSignificance * std::sqrt(variance);
+    }
+
     CellChoice best_in_cell(const RoundState& s, uint32_t cell) const {
         const uint32_t* first = &s.cell_members[s.cell_start[cell]];
         const size_t members = s.cell_start[cell + 1] - s.cell_start[cell];
@@ -294,16 +310,32 @@ private:
             std::sort(trials.begin(), trials.end());
             trials.erase(std::unique(trials.begin(), trials.end()), trials.end());
         }
-        CellChoice best, cover;
+        CellChoice best, cover, own;
         for (uint32_t x : trials) {
             InsertionGain g = insertion_gain(s, x);
+            // What inserting x removes at x itself, whatever the model says of its neighbours (trusted as
+            // the gain is: less a standard deviation of its noise).
+            double rr = 0;
+            for (int k = 0; k < kSignalSize; ++k) rr += s.residual[kSignalSize * size_t(x) + size_t(k)] * s.residual[kSignalSize * size_t(x) + size_t(k)];
+            const double sx = s.noise[x], tx = std::max(0.0, rr - sx);
+            const double own_trusted = rr - sx - kSignificance * std::sqrt((4.0 * tx * sx + 2.0 * sx * sx) / kSignalSize);
+            if (own_trusted > 0 && (own.cavity.empty() || own_trusted > own.key)) own.key = own_trusted, own.candidate = x, own.cavity = g.cavity;
             const double trusted = g.gain - kSignificance * g.deviation;
             if (trusted > 0 && (!best.significant || trusted > best.key)) {
                 best.significant = true, best.key = trusted, best.candidate = x, best.cavity = g.cavity;
             }
             if (cover.cavity.empty() || g.coverage > cover.key) cover.key = g.coverage, cover.candidate = x, cover.cavity = std::move(g.cavity);
         }
-        return best.significant ? best : cover;
+        if (best.significant) return best;
+        // Beyond the hull the model is a split of one outer cell, which can hold a whole region the probes
+        // have not reached (bright and dark points mixed): no single insertion is predicted to gain there,
+        // and ranked by coverage behind every trusted gain it would never get a probe. A point the probes
+        // miss by more than its noise is inserted instead, ranked by the error it removes at itself.
+        if (cell >= s.store->header().inner_cell_count && !own.cavity.empty() && error_stands_out(s, first, members)) {
+            own.significant = true;
+            return own;
+        }
+        return cover;
     }
 
     struct CachedChoice {

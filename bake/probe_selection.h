@@ -11,11 +11,12 @@
 // The choice: a well-spread start (farthest points), then rounds. Each round builds the store of the
 // chosen probes, interpolates every candidate, and per cell finds the held-out candidate whose
 // insertion would lower the summed squared error at the held-out candidates most (insertion_gain.h);
-// cells are ranked by that gain (noise-corrected, trusted only when it stands out from the noise;
-// the others by the volume a candidate would take over, for coverage), and the best of each cell joins
-// a batch unless its cavity touches one already chosen this round. Batches grow with the set
-// (a quarter of it), so the whole curve costs a few dozen rounds. Every count is a prefix of the
-// insertion order: the first k chosen are the placement for k probes.
+// cells are ranked by that gain (noise-corrected, trusted only when it stands out from the noise; an
+// outer cell without a trusted gain by the largest error one candidate's insertion removes at itself,
+// when that stands out; the others by the volume a candidate would take over, for coverage), and the
+// best of each cell joins a batch unless its cavity touches one already chosen this round. Batches
+// grow with the set (a quarter of it), so the whole curve costs a few dozen rounds. Every count is a
+// prefix of the insertion order: the first k chosen are the placement for k probes.
 #pragma once
 
 #include "bake/placement_signal.h"
