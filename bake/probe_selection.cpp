@@ -273,6 +273,21 @@ public:
     }
 
 private:
+    // |interpolated - baked|² at candidate x, over the signal's components.
+    static double squared_residual(const RoundState& s, uint32_t x) {
+        const double* r = &s.residual[kSignalSize * size_t(x)];
+        double rr = 0;
+        for (int k = 0; k < kSignalSize; ++k) rr += r[k] * r[k];
+        return rr;
+    }
+
+    // The variance of a squared residual rr whose expected noise part is noise: the noise's cross term with
+    // the true residual and its own square (Gaussian noise per component).
+    static double squared_residual_variance(double rr, double noise) {
+        const double true_part = std::max(0.0, rr - noise);
+        return (4.0 * true_part * noise + 2.0 * noise * noise) / kSignalSize;
+    }
+
     // Whether the members' summed squared residual exceeds their noise by more than its standard
     // deviation: a sum over every member, so picking the largest of many noisy residuals does not make
     // pure noise stand out.
@@ -280,11 +295,9 @@ private:
         double excess = 0, variance = 0;
         for (size_t m = 0; m < members; ++m) {
             const uint32_t x = first[m];
-            double rr = 0;
-            for (int k = 0; k < kSignalSize; ++k) rr += s.residual[kSignalSize * size_t(x) + size_t(k)] * s.residual[kSignalSize * size_t(x) + size_t(k)];
-            const double sx = s.noise[x], tx = std::max(0.0, rr - sx);
-            excess += rr - sx;
-            variance += (4.0 * tx * sx + 2.0 * sx * sx) / kSignalSize;
+            const double rr = squared_residual(s, x);
+            excess += rr - s.noise[x];
+            variance += squared_residual_variance(rr, s.noise[x]);
         }
         return excess > kSignificance * std::sqrt(variance);
     }
@@ -300,9 +313,7 @@ private:
             std::vector<std::pair<double, uint32_t>> excess(members);
             for (size_t m = 0; m < members; ++m) {
                 const uint32_t x = first[m];
-                double rr = 0;
-                for (int k = 0; k < kSignalSize; ++k) rr += s.residual[kSignalSize * size_t(x) + size_t(k)] * s.residual[kSignalSize * size_t(x) + size_t(k)];
-                excess[m] = {-(rr - s.noise[x]), x};
+                excess[m] = {-(squared_residual(s, x) - s.noise[x]), x};
             }
             std::partial_sort(excess.begin(), excess.begin() + per_cell / 2, excess.end());
             for (size_t m = 0; m < per_cell / 2; ++m) trials.push_back(excess[m].second);
@@ -315,10 +326,8 @@ private:
             InsertionGain g = insertion_gain(s, x);
             // What inserting x removes at x itself, whatever the model says of its neighbours (trusted as
             // the gain is: less a standard deviation of its noise).
-            double rr = 0;
-            for (int k = 0; k < kSignalSize; ++k) rr += s.residual[kSignalSize * size_t(x) + size_t(k)] * s.residual[kSignalSize * size_t(x) + size_t(k)];
-            const double sx = s.noise[x], tx = std::max(0.0, rr - sx);
-            const double own_trusted = rr - sx - kSignificance * std::sqrt((4.0 * tx * sx + 2.0 * sx * sx) / kSignalSize);
+            const double rr = squared_residual(s, x);
+            const double own_trusted = rr - s.noise[x] - kSignificance * std::sqrt(squared_residual_variance(rr, s.noise[x]));
             if (own_trusted > 0 && (own.cavity.empty() || own_trusted > own.key)) own.key = own_trusted, own.candidate = x, own.cavity = g.cavity;
             const double trusted = g.gain - kSignificance * g.deviation;
             if (trusted > 0 && (!best.significant || trusted > best.key)) {
