@@ -146,6 +146,7 @@ Status run_interpolate_batch(const Store::Impl& s, size_t count, const float* po
             target[j] = direct ? reinterpret_cast<float*>(strided(out_sh, group + j, sh_stride)) : scratch[j];
         if (hints || !chain_hints) {
             s.locate.interpolate_batch(s, n, local, cell, target, status);
+            for (size_t j = 0; j < n; ++j) reweigh_blocked(s, local[j], &cell[j], &status[j], target[j]);
         } else {  // each query starts where the previous one ended: one after the other
             for (size_t j = 0; j < n; ++j) {
                 cell[j] = chained;
@@ -156,7 +157,6 @@ Status run_interpolate_batch(const Store::Impl& s, size_t count, const float* po
         }
         for (size_t j = 0; j < n; ++j) {
             const size_t i = group + j;
-            reweigh_blocked(s, local[j], &cell[j], &status[j], target[j]);
             if (hints) std::memcpy(strided(hints, i, hint_stride), &cell[j], sizeof cell[j]);
             if (!direct) std::memcpy(strided(out_sh, i, sh_stride), scratch[j], sizeof scratch[j]);
             if (status[j] != Status::ok && first == count) first = i, failure = status[j];

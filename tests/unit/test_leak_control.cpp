@@ -626,3 +626,46 @@ TEST_CASE("leak: interpolations take the fused kernel and answer blocked cells a
     }
     CHECK(weighed > 100);  // the wall changes many answers
 }
+
+TEST_CASE("leak: from carried hints and far beyond an irregular hull, single and chained batch interpolations "
+          "answer as locate-weigh-blend does, bit for bit", "[leak][batch]") {
+    // Irregular probes crossed by the wall (outer cells whose sweeps meet in gaps); queries inside and far
+    // beyond the hull, each from the previous one's cell as a moving object's hint carries it, and the same
+    // as one batch without hints chaining them (the batch's one-after-the-other path).
+    const Scene scene = wall_scene();
+    const unsigned seed = GENERATE(7u, 8u);
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<float> jitter(-0.45f, 0.45f), value(-1.0f, 1.0f), box(-2.5f, 2.5f);
+    std::vector<float> probes = lattice_probes();
+    for (float& x : probes) x = seed % 2 ? x + jitter(random) : box(random);
+    const size_t count = probes.size() / 3;
+    std::vector<float> sh(27 * count);
+    for (float& x : sh) x = value(random);
+    BuildSettings settings;
+    settings.scene = &scene;
+    const std::unique_ptr<Store> leak = load(build_store_data(probes.data(), 12, sh.data(), 108, count, settings));
+    const std::unique_ptr<Store> plain = load(build_store_data(probes.data(), 12, sh.data(), 108, count, BuildSettings()));
+    std::uniform_real_distribution<float> near(-3.0f, 3.0f), far(-40.0f, 40.0f);
+    const size_t n = 10003;  // not a whole number of batch groups
+    std::vector<float> points(3 * n);
+    for (size_t i = 0; i < n; ++i)
+        for (int a = 0; a < 3; ++a) points[3 * i + size_t(a)] = i % 2 ? far(random) : near(random);
+    BatchSettings chained;
+    chained.chain_hints = true;
+    std::vector<float> batch(27 * n);
+    REQUIRE(leak->interpolate_batch(n, points.data(), 12, nullptr, 0, batch.data(), 108, chained, nullptr) == Status::ok);
+    int32_t fused_hint = -1, piped_hint = -1, plain_hint = -1;
+    size_t weighed = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const float* q = &points[3 * i];
+        float fused[27], piped[27], occlusion[4], unweighed[27];
+        REQUIRE(leak->interpolate(q, &fused_hint, fused) == Status::ok);
+        REQUIRE(leak->interpolate(q, &piped_hint, piped, occlusion) == Status::ok);  // the pipeline
+        REQUIRE(fused_hint == piped_hint);
+        REQUIRE(std::memcmp(fused, piped, sizeof fused) == 0);
+        REQUIRE(std::memcmp(fused, &batch[27 * i], sizeof fused) == 0);
+        REQUIRE(plain->interpolate(q, &plain_hint, unweighed) == Status::ok);
+        weighed += std::memcmp(fused, unweighed, sizeof fused) != 0;
+    }
+    CHECK(weighed > 100);  // the wall changes many answers
+}
