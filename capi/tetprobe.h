@@ -55,7 +55,7 @@ extern "C" {
 #endif
 
 #define TP_VERSION_MAJOR 0
-#define TP_VERSION_MINOR 7
+#define TP_VERSION_MINOR 8
 #define TP_VERSION_PATCH 0
 /** Version as one number, (major << 16) | (minor << 8) | patch; compare with tp_version(). */
 #define TP_VERSION ((TP_VERSION_MAJOR << 16) | (TP_VERSION_MINOR << 8) | TP_VERSION_PATCH)
@@ -570,8 +570,8 @@ typedef struct tp_light {
     float inner_angle;           /* spot: full cone angle in degrees with full intensity */
     float outer_angle;           /* spot: full cone angle in degrees beyond which there is no light */
     /** Point, spot: closer than this the irradiance stays at its value at this distance instead of growing
-        without bound (0 = pure inverse square; q3map2 clamps at 16 units). Added in 0.7: a struct_size that
-        ends before it (an older caller) reads as 0. */
+        without bound (0 = pure inverse square; q3map2 clamps at 16 units). Added in 0.8: a struct_size that
+        ends before it (a struct filled by a caller built with the 0.7 header) reads as 0. */
     float near_distance;
 } tp_light;
 

@@ -40,13 +40,17 @@ void answer_one(const Store::Impl& s, const float world[3], int32_t hint, Locati
 }
 
 // After the fused kernel (locate + blend without leak control): a query whose cell holds a blocked pair
-// is located again from that cell (which holds it, so the walk stops there), weighed for leaks and blended
-// again into out_sh. Answers in other cells are already the pipeline's, bit for bit.
-void reweigh_blocked(const Store::Impl& s, const float local[3], int32_t* cell, Status* status, float out_sh[27]) {
+// is answered again through the pipeline, weighed for leaks and blended again into out_sh. From an inner
+// cell that holds the point the walk stops at once; an outer cell's choice (and the exhaustive fallback's)
+// can depend on where the walk starts, so there it starts again from the caller's hint. Answers in other
+// cells are already the pipeline's, bit for bit.
+void reweigh_blocked(const Store::Impl& s, const float local[3], int32_t start, int32_t* cell, Status* status,
+                     float out_sh[27]) {
     if (!s.leak_offsets || *status != Status::ok || *cell < 0 || !s.leak_cells.get()[*cell]) return;
     Location loc;
     const float at[1][3] = {{local[0], local[1], local[2]}};
-    answer(s, 1, at, cell, &loc);
+    int32_t from = uint32_t(*cell) < s.inner_cell_count ? *cell : start;
+    answer(s, 1, at, &from, &loc);
     *cell = loc.cell;
     *status = answer_sh(s, loc, out_sh, nullptr);
 }
@@ -145,13 +149,15 @@ Status run_interpolate_batch(const Store::Impl& s, size_t count, const float* po
         for (size_t j = 0; j < n; ++j)
             target[j] = direct ? reinterpret_cast<float*>(strided(out_sh, group + j, sh_stride)) : scratch[j];
         if (hints || !chain_hints) {
+            int32_t start[kMaxBatchGroup];
+            std::copy(cell, cell + n, start);
             s.locate.interpolate_batch(s, n, local, cell, target, status);
-            for (size_t j = 0; j < n; ++j) reweigh_blocked(s, local[j], &cell[j], &status[j], target[j]);
+            for (size_t j = 0; j < n; ++j) reweigh_blocked(s, local[j], start[j], &cell[j], &status[j], target[j]);
         } else {  // each query starts where the previous one ended: one after the other
             for (size_t j = 0; j < n; ++j) {
                 cell[j] = chained;
                 status[j] = s.locate.interpolate(s, local[j], &cell[j], target[j]);
-                reweigh_blocked(s, local[j], &cell[j], &status[j], target[j]);
+                reweigh_blocked(s, local[j], chained, &cell[j], &status[j], target[j]);
                 chained = cell[j];
             }
         }
@@ -197,9 +203,10 @@ Status Store::interpolate(const float world_position[3], int32_t* hint, float ou
     if (!out_occlusion && s.locate.interpolate) {
         float local[3];
         local_position(s, world_position, local);
-        int32_t cell = hint ? *hint : -1;
+        const int32_t start = hint ? *hint : -1;
+        int32_t cell = start;
         Status status = s.locate.interpolate(s, local, &cell, out_sh);
-        reweigh_blocked(s, local, &cell, &status, out_sh);
+        reweigh_blocked(s, local, start, &cell, &status, out_sh);
         if (hint) *hint = cell;
         return status;
     }

@@ -14,7 +14,7 @@ namespace TetProbe
     internal static partial class NativeProxy
     {
         /// <summary>The version this binding was written for; the library's major.minor must match.</summary>
-        public const uint BindingVersionMajor = 0, BindingVersionMinor = 7;
+        public const uint BindingVersionMajor = 0, BindingVersionMinor = 8;
 
         /// <summary>Where the library's version comes from; tests put a fake library version here.</summary>
         internal static Func<uint> VersionSource = () => NativeMethods.tp_version();

@@ -538,5 +538,5 @@ static class Tests
 
 static class NativeProxyVersion
 {
-    public const uint Major = 0, Minor = 7;
+    public const uint Major = 0, Minor = 8;
 }

@@ -12,7 +12,7 @@ static class VersionTests
             NativeProxy.VersionSource = () => (0u << 16) | (4u << 8) | 2u;
             NativeProxy.ResetVersionCheck();
             Tests.Throws<TetProbeException>(() => ProbeStore.Build(new[] { new Vector3(0, 0, 0) }, null), "0.4.2 library refused by Build",
-                e => e.Status == TetProbeStatus.Version && e.Message.Contains("0.4.2") && e.Message.Contains("0.7"));
+                e => e.Status == TetProbeStatus.Version && e.Message.Contains("0.4.2") && e.Message.Contains("0.8"));
             Tests.Throws<TetProbeException>(() => ProbeStore.Load(new byte[16]), "refused by Load",
                                             e => e.Status == TetProbeStatus.Version);
             Tests.Throws<TetProbeException>(() => new Scene(), "refused by Scene", e => e.Status == TetProbeStatus.Version);
@@ -21,7 +21,7 @@ static class VersionTests
                                             e => e.Status == TetProbeStatus.Version);
             Tests.Throws<TetProbeException>(() => ShadowCasterVolume.TestSphere(new float[0], new Vector3(0, 0, 0), 1),
                                             "refused by the volumes", e => e.Status == TetProbeStatus.Version);
-            NativeProxy.VersionSource = () => (1u << 16) | (7u << 8);
+            NativeProxy.VersionSource = () => (1u << 16) | (8u << 8);
             Tests.Throws<TetProbeException>(() => new Scene(), "another major refused", e => e.Status == TetProbeStatus.Version);
 
             NativeProxy.VersionSource = () => { throw new DllNotFoundException("libtetprobe.so: cannot open shared object file"); };
@@ -34,9 +34,9 @@ static class VersionTests
                                             e => e.Status == TetProbeStatus.Version && e.Message.Contains("tp_version") &&
                                                  e.Message.Contains("same release") && e.InnerException is EntryPointNotFoundException);
 
-            NativeProxy.VersionSource = () => (0u << 16) | (7u << 8) | 9u;
+            NativeProxy.VersionSource = () => (0u << 16) | (8u << 8) | 9u;
             using (ProbeStore store = ProbeStore.Build(new[] { new Vector3(0, 0, 0) }, null))
-                Tests.Check(store.Info.Probes == 1, "another patch of 0.7 is accepted");
+                Tests.Check(store.Info.Probes == 1, "another patch of 0.8 is accepted");
         }
         finally
         {

@@ -192,15 +192,15 @@ def test_struct_sizes_are_what_the_library_fills():
 def test_version_matches_and_a_mismatch_is_refused():
     assert tetprobe.library_version()[:2] == _native.PACKAGE_VERSION[:2]
     assert tetprobe.__version__.startswith("%d.%d." % _native.PACKAGE_VERSION[:2])
-    assert _native.PACKAGE_VERSION[:2] == (0, 7)
-    _native.check_version((0 << 16) | (7 << 8) | 7, (0, 7, 0))  # another patch is fine
+    assert _native.PACKAGE_VERSION[:2] == (0, 8)
+    _native.check_version((0 << 16) | (8 << 8) | 7, (0, 8, 0))  # another patch is fine
     with pytest.raises(Error) as raised:
-        _native.check_version((0 << 16) | (6 << 8), (0, 7, 0))  # the 0.6 library (format 4 stores)
+        _native.check_version((0 << 16) | (7 << 8), (0, 8, 0))  # the 0.7 library (a shorter tp_light)
     assert raised.value.status == Status.VERSION
     with pytest.raises(Error):
-        _native.check_version((0 << 16) | (8 << 8), (0, 7, 0))
+        _native.check_version((0 << 16) | (9 << 8), (0, 8, 0))
     with pytest.raises(Error):
-        _native.check_version((1 << 16) | (7 << 8), (0, 7, 0))
+        _native.check_version((1 << 16) | (8 << 8), (0, 8, 0))
 
 
 def test_library_search_order_starts_with_the_environment(monkeypatch):

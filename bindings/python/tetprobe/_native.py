@@ -14,7 +14,7 @@ from ctypes import (CFUNCTYPE, POINTER, Structure, c_char, c_char_p, c_double, c
 from .errors import Error, Status
 
 #: The library version this package was written for; major.minor must match the loaded library.
-PACKAGE_VERSION = (0, 7, 0)
+PACKAGE_VERSION = (0, 8, 0)
 
 SH_FLOATS = 27
 
