@@ -86,12 +86,12 @@
 // }
 #include "bench.h"
 
+#include "level_metric.h"
 #include "level_peers.h"
 #include "level_reference.h"
 #include "level_tetprobe.h"
 #include "part_output.h"
 #include "probe_choices.h"
-#include "level_metric.h"
 #include "store_layouts.h"
 
 #include "bake/ray_caster.h"
@@ -393,6 +393,9 @@ Json run_level(const LevelArgs& a, const std::string& name, const LevelSettings&
                 const std::vector<float> p(order.begin(), order.begin() + 3 * fit);
                 const std::vector<float> sh(order_sh.begin(), order_sh.begin() + 27 * fit);
                 LevelResult r = evaluate_tetprobe(level, p, sh, layout);
+                if (fit == order_count)
+                    r.note = "all " + std::to_string(fit) + " probes of the placement order fit (it stops at " +
+                             std::to_string(order_count) + ")";
                 r.method = "tetprobe_placed_at_bytes";
                 r.label = "tetprobe, placed, as many as fit, " + layout.label;
                 r.placement_seconds = order_seconds;
@@ -626,9 +629,11 @@ int run_leak_points(const LevelArgs& a, const LevelSettings& settings) {
         uint32_t probes[2][4];
         for (int k = 0; k < 2; ++k) {
             int32_t hint = -1;
-            tp_store_interpolate(stores[k].get(), q, &hint, out[k]);
+            if (tp_store_interpolate(stores[k].get(), q, &hint, out[k]) != TP_OK)
+                throw std::runtime_error(level.name + ": point " + std::to_string(i) + ": " + tp_last_error());
             hint = -1;
-            tp_store_weights(stores[k].get(), q, &hint, probes[k], weights[k]);
+            if (tp_store_weights(stores[k].get(), q, &hint, probes[k], weights[k]) != TP_OK)
+                throw std::runtime_error(level.name + ": point " + std::to_string(i) + ": " + tp_last_error());
         }
         const std::vector<float> reference = luminance6(&level.reference[27 * i], 1);
         double squared[2] = {0, 0};
