@@ -2,7 +2,8 @@
 // the space playable seeds reach, validation points cover the free volume, the result is deterministic
 // for a seed and any thread count and every count is a prefix, placement beats random subsamples of the
 // same candidates on a scene with a sharp shadow and reports the error a high-ray measurement finds,
-// noise does not steer it, a large level places at half a metre, cancel and bad input.
+// noise does not steer it, a large level places at half a metre, cancel and bad input; the selection
+// itself gives a bright region beyond the hull of its first probes a probe early.
 #include <catch2/catch.hpp>
 
 #include "placement_scenes.h"
@@ -10,6 +11,7 @@
 #include "bake/lighting_bake.h"
 #include "bake/placement_signal.h"
 #include "bake/probe_placement.h"
+#include "bake/probe_selection.h"
 #include "bake/store_builder.h"
 #include "core/error.h"
 #include "core/store.h"
@@ -17,11 +19,13 @@
 #include <algorithm>
 #include <cstring>
 #include <functional>
+#include <memory>
 #include <random>
 #include <set>
 #include <string>
 #include <tuple>
 #include <utility>
+#include <vector>
 
 using namespace tetprobe;
 using namespace placement_test;
@@ -595,4 +599,63 @@ TEST_CASE("placement: bad input gets a clear status and a message naming the num
     CHECK(message.find("cannot be decided") != std::string::npos);
     Scene empty;
     CHECK(status_of([&] { place_probes(empty, room_settings()); }, &message) == Status::scene);
+}
+
+TEST_CASE("placement: a bright spot beyond the hull of the first probes, mixed with dark points, gets a probe",
+          "[placement]") {
+    // A 20 x 20 x 2 m slab of candidates, 1 m apart, holding a smooth bowl-shaped field (the cells inside
+    // have insertions that surely gain, round after round), and up to a metre beyond its x = 20 face, near
+    // one corner, a small region the farthest-point start leaves outside its hull: three bright points
+    // right above the face and, farther out, dark ones. In that one outer cell no single insertion has a
+    // trusted gain (the dark points would take the bright residual), so without the starved-cell
+    // rule the region waits behind the trusted gains inside; with it the worst-missed bright point is
+    // inserted in the first rounds.
+    SignalPoints points;
+    auto add = [&](float x, float y, float z, double value) {
+        points.positions.insert(points.positions.end(), {x, y, z});
+        for (int k = 0; k < kSignalSize; ++k) points.signal.value.push_back(float(value));
+        points.signal.noise.push_back(1e-4f);
+        points.counted.push_back(1);
+    };
+    auto field = [](double x, double y) { return 1.0 + 0.01 * ((x - 10) * (x - 10) + (y - 10) * (y - 10)); };
+    for (int x = 0; x <= 20; ++x)
+        for (int y = 0; y <= 20; ++y)
+            for (int z = 0; z <= 2; ++z) add(float(x), float(y), float(z), field(x, y));
+    const size_t region = points.counted.size();
+    for (float y : {1.0f, 1.5f, 2.0f}) add(20.3f, y, 1.0f, field(20.3, y) + 10.0);
+    const size_t bright_end = points.counted.size();
+    for (float x : {20.6f, 20.9f})
+        for (float y : {1.0f, 1.5f, 2.0f})
+            for (float z : {0.8f, 1.0f, 1.2f}) add(x, y, z, field(x, y) - 0.5);
+    SelectionSettings settings;
+    settings.target_count = 30;  // three rounds: 16, 20, 25, 30
+    settings.threads = 1;
+    const Selection chosen = select_probes(points, points, settings, Progress{});
+    REQUIRE(chosen.order.size() == 30);
+    std::string order;
+    for (uint32_t i : chosen.order) order += std::to_string(i) + " ";
+    INFO("order: " << order);
+    // The start (16 probes) leaves the whole region beyond its hull, in one outer cell.
+    std::vector<float> start;
+    for (size_t k = 0; k < 16; ++k) {
+        const float* p = &points.positions[3 * size_t(chosen.order[k])];
+        start.insert(start.end(), p, p + 3);
+    }
+    const std::vector<float> no_sh(27 * 16, 0.0f);
+    const std::vector<uint8_t> blob = write_store_blob(build_store_data(start.data(), 12, no_sh.data(), 108, 16, BuildSettings{}));
+    const std::unique_ptr<Store> store = Store::load(blob.data(), blob.size());
+    const size_t in_region = points.counted.size() - region;
+    std::vector<int32_t> cells(in_region, -1);
+    std::vector<uint32_t> probes(4 * in_region);
+    std::vector<float> weights(4 * in_region);
+    size_t first_outside = 0;
+    store->weights_batch(in_region, &points.positions[3 * region], 12, cells.data(), 4, probes.data(), 16, weights.data(), 16,
+                         BatchSettings{}, &first_outside);
+    REQUIRE(cells[0] >= int32_t(store->header().inner_cell_count));
+    for (int32_t c : cells) REQUIRE(c == cells[0]);
+    // By 30 probes a bright point has one (without the rule the region's first probe, a dark point, is
+    // the 593rd and its first bright one the 663rd).
+    size_t bright = 0;
+    for (uint32_t i : chosen.order) bright += i >= region && i < bright_end;
+    CHECK(bright >= 1);
 }
