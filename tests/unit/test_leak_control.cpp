@@ -588,20 +588,33 @@ TEST_CASE("leak: batches weigh by visibility as single queries do, bit for bit",
     CHECK(weighed > 100);  // the wall changes many answers: the batch did weigh them
 }
 
-TEST_CASE("leak: interpolations take the fused kernel and answer blocked cells again, as locate-weigh-blend does, "
-          "bit for bit", "[leak][batch]") {
-    // Probes with distinct SH, so that a wrong weight shows in the answer.
-    const Scene scene = wall_scene();
-    const std::vector<float> probes = lattice_probes();
+namespace {
+
+// The probes with random distinct SH (so that a wrong weight shows in an answer), built with leak control
+// against the scene and without it.
+struct LeakAndPlain {
+    std::unique_ptr<Store> leak, plain;
+};
+LeakAndPlain leak_and_plain_stores(const Scene& scene, const std::vector<float>& probes, std::mt19937& random) {
     const size_t count = probes.size() / 3;
-    std::mt19937 random(41);
     std::uniform_real_distribution<float> value(-1.0f, 1.0f);
     std::vector<float> sh(27 * count);
     for (float& x : sh) x = value(random);
     BuildSettings settings;
     settings.scene = &scene;
-    const std::unique_ptr<Store> leak = load(build_store_data(probes.data(), 12, sh.data(), 108, count, settings));
-    const std::unique_ptr<Store> plain = load(build_store_data(probes.data(), 12, sh.data(), 108, count, BuildSettings()));
+    return {load(build_store_data(probes.data(), 12, sh.data(), 108, count, settings)),
+            load(build_store_data(probes.data(), 12, sh.data(), 108, count, BuildSettings()))};
+}
+
+}  // namespace
+
+TEST_CASE("leak: interpolations take the fused kernel and answer blocked cells again, as locate-weigh-blend does, "
+          "bit for bit", "[leak][batch]") {
+    const Scene scene = wall_scene();
+    std::mt19937 random(41);
+    const LeakAndPlain stores = leak_and_plain_stores(scene, lattice_probes(), random);
+    const Store* leak = stores.leak.get();
+    const Store* plain = stores.plain.get();
     std::uniform_real_distribution<float> u(-2.2f, 2.2f);
     const size_t n = 3000;
     std::vector<float> points(3 * n);
@@ -635,16 +648,12 @@ TEST_CASE("leak: from carried hints and far beyond an irregular hull, single and
     const Scene scene = wall_scene();
     const unsigned seed = GENERATE(7u, 8u);
     std::mt19937 random(seed);
-    std::uniform_real_distribution<float> jitter(-0.45f, 0.45f), value(-1.0f, 1.0f), box(-2.5f, 2.5f);
+    std::uniform_real_distribution<float> jitter(-0.45f, 0.45f), box(-2.5f, 2.5f);
     std::vector<float> probes = lattice_probes();
     for (float& x : probes) x = seed % 2 ? x + jitter(random) : box(random);
-    const size_t count = probes.size() / 3;
-    std::vector<float> sh(27 * count);
-    for (float& x : sh) x = value(random);
-    BuildSettings settings;
-    settings.scene = &scene;
-    const std::unique_ptr<Store> leak = load(build_store_data(probes.data(), 12, sh.data(), 108, count, settings));
-    const std::unique_ptr<Store> plain = load(build_store_data(probes.data(), 12, sh.data(), 108, count, BuildSettings()));
+    const LeakAndPlain stores = leak_and_plain_stores(scene, probes, random);
+    const Store* leak = stores.leak.get();
+    const Store* plain = stores.plain.get();
     std::uniform_real_distribution<float> near(-3.0f, 3.0f), far(-40.0f, 40.0f);
     const size_t n = 10003;  // not a whole number of batch groups
     std::vector<float> points(3 * n);
