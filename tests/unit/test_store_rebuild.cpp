@@ -198,6 +198,18 @@ TEST_CASE("store rebuild: the header bounds the rebuild's work; the builder refu
         REQUIRE(try_load(forged, &message) == Status::invalid_blob);
         CHECK(message.find("start grid has more than") != std::string::npos);
     }
+    // Within that limit, a grid beyond the builder's dimensions for the bounds and cells would make a few bytes
+    // cost millions of walks: refused too; one more entry along an axis (another platform's rounding) is not.
+    const uint32_t* built = &d.grid[0];
+    {
+        std::vector<uint8_t> forged = with_word(blob, offsetof(StoreHeader, grid), 1024);
+        forged = with_word(forged, offsetof(StoreHeader, grid) + 4, 1024);
+        forged = with_word(forged, offsetof(StoreHeader, grid) + 8, 4);
+        REQUIRE(try_load(forged, &message) == Status::invalid_blob);
+        CHECK(message.find("is larger than the builder's " + std::to_string(built[0]) + " x " + std::to_string(built[1]) +
+                           " x " + std::to_string(built[2])) != std::string::npos);
+        REQUIRE(try_load(with_word(blob, offsetof(StoreHeader, grid) + 4, built[1] + 1), &message) == Status::ok);
+    }
     // Probes on two skew lines: a Delaunay tessellation of n^2 / 4 cells, over 16 a probe at 80 probes.
     families::ProbeSet skew{"two skew lines", {}};
     for (int i = 0; i < 40; ++i) skew.add(i, 0, 0), skew.add(0, i + 0.5, 10);
