@@ -15,7 +15,7 @@ const LeakPlane* planes(const Store::Impl& s) { return reinterpret_cast<const Le
 // Exact side of `point` against one side's wall plane of blocked edge i.
 int side_of(const Store::Impl& s, uint32_t i, int side, const float point[3]) {
     const LeakPlane& p = planes(s)[2 * size_t(i) + size_t(side)];
-    return leak_plane_side(p.normal, p.offset, point);
+    return leak_plane_side(p, point);
 }
 
 // The index of the blocked pair (a, b), a < b, in leak_edges, or -1 when they see each other.

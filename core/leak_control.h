@@ -20,7 +20,7 @@
 // wall's pair. Cells without a blocked pair
 // are not touched at all (bit for bit); a query at a probe keeps weight exactly 1 there (a probe is
 // strictly in front of its own planes, which the loader checks). The data is 24 bytes per blocked edge
-// in the blob (32 more in memory: its two planes with their normals decoded on load, so that a query
+// in the blob (32 more in memory: its two LeakPlanes, normals decoded on load, so that a query
 // decodes nothing); the cost two exact side tests per blocked pair of the query's cell. (Per-probe
 // depth maps, as DDGI keeps, would cost a store many times this size and change every cell's answers,
 // walls or not.)
@@ -34,13 +34,6 @@ namespace tetprobe {
 // never divide by zero when every probe of the cell is behind a wall from the query (they then fall
 // back towards the plain barycentric weights, continuously).
 constexpr double kLeakFloor = 1e-3;
-
-// A wall plane as the run time tests it: the octahedral code's integer normal (leak_plane_normal),
-// decoded once on load, and the offset.
-struct LeakPlane {
-    int32_t normal[3];
-    float offset;
-};
 
 // Fills store.leak_planes (two per leak edge, side 0 then side 1) from the blob's records. Called once on
 // load, before check_leak_planes.

@@ -39,12 +39,15 @@ void leak_plane_normal(const int16_t code[2], int32_t out[3]) {
 }
 
 int leak_plane_side(const int16_t code[2], float offset, const float point[3]) {
-    int32_t n[3];
-    leak_plane_normal(code, n);
-    return leak_plane_side(n, offset, point);
+    LeakPlane plane;
+    leak_plane_normal(code, plane.normal);
+    plane.offset = offset;
+    return leak_plane_side(plane, point);
 }
 
-int leak_plane_side(const int32_t n[3], float offset, const float point[3]) {
+int leak_plane_side(const LeakPlane& plane, const float point[3]) {
+    const int32_t* n = plane.normal;
+    const float offset = plane.offset;
     // Each term is exact (a 15-bit integer times a float); only the three additions round, each by at
     // most half an ulp of its result, so |computed - exact| <= 3 eps (1 + 3 eps) sum |t_k| (eps = 2^-53),
     // within 4 eps times the computed sum of magnitudes (itself rounded by at most 3 eps relative).

@@ -21,9 +21,15 @@ void leak_plane_normal(const int16_t code[2], int32_t out[3]);
 // Exact sign (-1, 0, +1) of N . point - offset for the code's integer normal N (point local, float32).
 int leak_plane_side(const int16_t code[2], float offset, const float point[3]);
 
-// The same for a normal already decoded by leak_plane_normal (each component within +-32767): what the
-// run time keeps per plane, so that a query decodes nothing.
-int leak_plane_side(const int32_t normal[3], float offset, const float point[3]);
+// A wall plane as the run time tests it: the code's integer normal (leak_plane_normal), decoded once on
+// load, and the offset.
+struct LeakPlane {
+    int32_t normal[3];
+    float offset;
+};
+
+// The same side test on a decoded plane: what a query calls, so that it decodes nothing.
+int leak_plane_side(const LeakPlane& plane, const float point[3]);
 
 // The stored plane of a wall seen from probe `own` (the probe it faces) across the segment to `other`:
 // the code of `normal` turned towards own, and an offset through `crossing` (a point on the segment),
