@@ -306,7 +306,11 @@ private:
             const Boundary& b = boundary_[at];
             const uint32_t t = new_cell();
             Tet& cell = tets_[t];
-            std::copy(tets_[b.cell].v, tets_[b.cell].v + 4, cell.v);
+            // Through a local: std::copy within tets_ may overlap as far as the compiler knows, and
+            // became a call to memmove (about 1.5% of a rebuild).
+            uint32_t corners[4];
+            std::memcpy(corners, tets_[b.cell].v, sizeof corners);
+            std::memcpy(cell.v, corners, sizeof corners);
             cell.v[b.facet] = p;
             cell.n[b.facet] = b.outside;
             tets_[b.outside >> 2].n[b.outside & 3] = t * 4 + b.facet;
