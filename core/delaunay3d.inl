@@ -42,8 +42,7 @@ private:
             return t;
         }
         if (tets_.size() >= max_cells_) over_budget();
-        tets_.push_back(Tet{});
-        return uint32_t(tets_.size() - 1);
+        return tets_.append();
     }
 
     // Out of line, so that new_cell stays small enough to inline into the insertion.
@@ -373,7 +372,7 @@ private:
     uint32_t count_;
     uint64_t max_cells_;  // live cells (those outside the hull included) at any time
 
-    std::vector<Tet> tets_;
+    CellPool tets_;
     std::vector<uint32_t> free_;
     std::vector<char> initial_;
     std::vector<float> padded_;  // 4 floats per point
