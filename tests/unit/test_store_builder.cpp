@@ -1011,7 +1011,7 @@ TEST_CASE("builder: start grid dimensions follow the extents within the cell bud
     REQUIRE(g[0] == 10);
     REQUIRE(g[1] == 10);
     REQUIRE(g[2] == 10);
-    tetprobe::start_grid_dimensions(lo, cube, 16000, 16, g);  // the rebuilt layout's cells per entry
+    tetprobe::start_grid_dimensions(lo, cube, 8000, 8, g);  // the rebuilt layout's cells per entry
     REQUIRE(g[0] == 10);
     REQUIRE(g[1] == 10);
     REQUIRE(g[2] == 10);
