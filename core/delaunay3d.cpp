@@ -10,6 +10,8 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -70,6 +72,33 @@ struct Tet {
     uint32_t v[4];
     uint32_t n[4];
     uint32_t mark;  // stamp << 1 | (1 = not in conflict) for the insertion of that stamp
+};
+
+// The cells, appended one at a time: a std::vector's push_back stayed a call (about one per new
+// cell that the free list cannot give). Appended cells start with mark 0 (no insertion's).
+class CellPool {
+public:
+    void reserve(size_t capacity) {
+        if (capacity > capacity_) grow(capacity);
+    }
+    size_t size() const { return size_; }
+    Tet& operator[](size_t i) { return cells_[i]; }
+    const Tet& operator[](size_t i) const { return cells_[i]; }
+    uint32_t append() {
+        if (__builtin_expect(size_ == capacity_, 0)) grow(std::max<size_t>(64, 2 * capacity_));
+        cells_[size_].mark = 0;
+        return uint32_t(size_++);
+    }
+
+private:
+    __attribute__((noinline)) void grow(size_t capacity) {
+        std::unique_ptr<Tet[]> more(new Tet[capacity]);
+        std::copy(cells_.get(), cells_.get() + size_, more.get());
+        cells_ = std::move(more);
+        capacity_ = capacity;
+    }
+    std::unique_ptr<Tet[]> cells_;
+    size_t size_ = 0, capacity_ = 0;
 };
 
 // Pairs the facets of one insertion's new cells across the edges they share: each new facet is

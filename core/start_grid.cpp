@@ -126,13 +126,14 @@ __attribute__((target("avx2"), flatten)) void fill_grid_avx2(StoreData& data, co
 
 }  // namespace
 
-void start_grid_dimensions(const float lo[3], const float hi[3], uint32_t inner_cells, uint32_t out[3]) {
+void start_grid_dimensions(const float lo[3], const float hi[3], uint32_t inner_cells, uint32_t cells_per_entry,
+                           uint32_t out[3]) {
     double extent[3], largest = 0;
     for (int a = 0; a < 3; ++a) {
         extent[a] = std::max(0.0, double(hi[a]) - double(lo[a]));
         largest = std::max(largest, extent[a]);
     }
-    const double target = std::min(double(kMaxStartGridCells), std::max(1.0, inner_cells / 4.0));
+    const double target = std::min(double(kMaxStartGridCells), std::max(1.0, double(inner_cells) / std::max(1u, cells_per_entry)));
     // Axes thinner than a millionth of the largest extent (flat and line sets) get one cell.
     double volume = 1;
     int active = 0;
@@ -180,7 +181,9 @@ void fill_start_grid(StoreData& data) {
 }
 
 void build_start_grid(StoreData& data) {
-    start_grid_dimensions(data.bounds_min, data.bounds_max, data.inner_cell_count, data.grid);
+    const uint32_t cells_per_entry =
+        data.layout == kLayoutRebuilt ? kRebuiltStartGridCellsPerEntry : kStoredStartGridCellsPerEntry;
+    start_grid_dimensions(data.bounds_min, data.bounds_max, data.inner_cell_count, cells_per_entry, data.grid);
     fill_start_grid(data);
 }
 

@@ -49,8 +49,8 @@
 //     those of its hull, in the builder's cell order, with the header's cell_count and
 //     inner_cell_count (a rebuild that disagrees refuses the blob), the grid of header.grid cells.
 //     cell_count <= 16 probe_count + 64, grid cells <= kMaxStartGridCells and each grid axis at most
-//     max(1, n / 8) above the builder's n for the header's bounds and inner cells (the rebuild's work
-//     is bounded by the header). Normals are stored as in the other layouts. SH records packed.
+//     max(1, n / 8) above the builder's n at 4 inner cells an entry (the work is bounded by the header;
+//     the builder gives this layout a coarser grid, start_grid.h). Normals as in other layouts. SH packed.
 // - an outer cell sweeps its facet along the probes' normals: vertex k at parameter t >= 0 sits at
 //   position_k + t * normal_k, and the cell holds p where the moved facet passes through p.
 // - normals: one per hull probe (a probe of some outer cell), in increasing probe order,

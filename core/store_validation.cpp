@@ -113,14 +113,15 @@ void check_header(const StoreHeader& h, size_t size) {
             uint64_t(h.grid[0]) * h.grid[1] * h.grid[2] > kMaxStartGridCells)
             reject("the start grid has more than " + std::to_string(kMaxStartGridCells) + " cells");
         // Filling the grid walks once per entry, and no section's size pays for it here: a few bytes could
-        // ask for millions of walks. The builder's own dimensions for these bounds and cells bound it; the
-        // margin (an eighth, at least one, per axis) absorbs another platform's std::pow rounding.
+        // ask for millions of walks. The builder's finest dimensions for these bounds and cells (those of the
+        // stored layouts, which rebuilt blobs of earlier builders have too) bound it; the margin (an eighth,
+        // at least one, per axis) absorbs another platform's std::pow rounding.
         uint32_t builder[3];
-        start_grid_dimensions(h.bounds_min, h.bounds_max, h.inner_cell_count, builder);
+        start_grid_dimensions(h.bounds_min, h.bounds_max, h.inner_cell_count, kStoredStartGridCellsPerEntry, builder);
         for (int a = 0; a < 3; ++a)
             if (h.grid[a] > builder[a] + std::max(1u, builder[a] / 8))
                 reject("the start grid " + std::to_string(h.grid[0]) + " x " + std::to_string(h.grid[1]) + " x " +
-                       std::to_string(h.grid[2]) + " is larger than the builder's " + std::to_string(builder[0]) + " x " +
+                       std::to_string(h.grid[2]) + " is larger than the builder's finest " + std::to_string(builder[0]) + " x " +
                        std::to_string(builder[1]) + " x " + std::to_string(builder[2]) + " for these bounds and cells");
     }
     const uint32_t max_count = (h.flags & kFlagIndex32) ? kOuter32 - 1 : kMaxIndex16;

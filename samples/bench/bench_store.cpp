@@ -358,6 +358,7 @@ struct SizeResult {
     tp_store_info encoded[3][4][2] = {};  // [TP_LAYOUT_*][TP_SH_ENCODING_*][quantised]
     double load_rebuilt_ms = 0;  // tp_store_load of the smallest L2 store's blob (rebuilt layout): its rebuild
     double single_unorm8 = 0, single_smallest = 0;
+    double cold_smallest = 0;  // cold on the smallest L2 store, whose start grid is coarser (start_grid.h)
     double floor_encoded[4] = {};  // the blend-only floor with core's kernel of each SH encoding (fast layout)
     double rebuild_ms = 0;  // core's rebuild of cells, neighbours and start grid from the stored probes
 };
@@ -368,9 +369,11 @@ const char* const kSectionNames[TP_STORE_SECTION_COUNT] = {
     "start grid", "occlusion", "leak offsets", "leak edges", "alignment padding"};
 
 // core's rebuild_cells on the stored probes of the same points (what a store that keeps no cells
-// costs at load): Delaunay, hull and outer cells, ordering, start grid.
+// costs at load): Delaunay, hull and outer cells, ordering, start grid (of the dimensions that layout
+// stores).
 double time_rebuild(const std::vector<float>& positions) {
     tetprobe::BuildSettings settings;
+    settings.layout = tetprobe::kLayoutRebuilt;
     const tetprobe::StoreData d =
         tetprobe::build_store_data(positions.data(), 12, nullptr, 108, positions.size() / 3, settings);
     return median_seconds(
@@ -455,6 +458,7 @@ bool run_size(size_t n, SizeResult* r, float* sink) {
                     r->single_unorm8 = time_coherent_single(store.get(), paths, sink);
                 if (layout == TP_LAYOUT_REBUILT && encoding == TP_SH_ENCODING_UNORM8 && quantized) {
                     r->single_smallest = time_coherent_single(store.get(), paths, sink);
+                    r->cold_smallest = time_points(store.get(), scattered, false, sink);
                     const void* blob = nullptr;
                     size_t size = 0;
                     tp_store_blob(store.get(), &blob, &size);
@@ -638,6 +642,8 @@ int run_store_bench(int argc, char** argv) {
               &SizeResult::batch_workers2);
     print_row("tetprobe 16^3 probe volume inside the box, `tp_store_sample_volume` (ns per point)", r, &SizeResult::volume);
     print_row("tetprobe cold (no hint)", r, &SizeResult::cold);
+    print_row("tetprobe cold (no hint), smallest L2 store (rebuilt layout: a coarser start grid)", r,
+              &SizeResult::cold_smallest);
     print_row("tetprobe teleport (hint of the previous random point)", r, &SizeResult::teleport);
     print_row("tetprobe outside the hull, coherent", r, &SizeResult::outside_coherent);
     print_row("tetprobe outside the hull, cold", r, &SizeResult::outside_cold);

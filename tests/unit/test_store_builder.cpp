@@ -1007,17 +1007,21 @@ TEST_CASE("builder: dimension detection compares thickness with the flat toleran
 TEST_CASE("builder: start grid dimensions follow the extents within the cell budget", "[builder]") {
     uint32_t g[3];
     const float lo[3] = {0, 0, 0}, cube[3] = {10, 10, 10}, flat[3] = {20, 10, 0}, box[3] = {40, 10, 10};
-    tetprobe::start_grid_dimensions(lo, cube, 4000, g);
+    tetprobe::start_grid_dimensions(lo, cube, 4000, 4, g);
     REQUIRE(g[0] == 10);
     REQUIRE(g[1] == 10);
     REQUIRE(g[2] == 10);
-    tetprobe::start_grid_dimensions(lo, flat, 800, g);
+    tetprobe::start_grid_dimensions(lo, cube, 8000, 8, g);  // the rebuilt layout's cells per entry
+    REQUIRE(g[0] == 10);
+    REQUIRE(g[1] == 10);
+    REQUIRE(g[2] == 10);
+    tetprobe::start_grid_dimensions(lo, flat, 800, 4, g);
     REQUIRE(g[2] == 1);
     REQUIRE(g[0] == 2 * g[1]);
-    tetprobe::start_grid_dimensions(lo, box, 100000000, g);
+    tetprobe::start_grid_dimensions(lo, box, 100000000, 4, g);
     REQUIRE(size_t(g[0]) * g[1] * g[2] <= tetprobe::kMaxStartGridCells);
     REQUIRE(g[0] > 3 * g[1]);
-    tetprobe::start_grid_dimensions(lo, lo, 1, g);
+    tetprobe::start_grid_dimensions(lo, lo, 1, 4, g);
     REQUIRE(g[0] * g[1] * g[2] == 1);
 }
 

@@ -1,7 +1,8 @@
 // The rebuilt layout (core/store_rebuild.h): a blob without cells, neighbours or start grid loads into
-// exactly the store the compact layout gives for the same build: on every hard-case family, with and
-// without extrapolation, float and quantised positions, the same cells and neighbours index for index
-// and the same answers bit for bit (cell, probes, weights, walk steps from the start grid, blended SH).
+// exactly the store the compact layout gives for the same build (with the rebuilt layout's coarser start
+// grid): on every hard-case family, with and without extrapolation, float and quantised positions, the
+// same cells and neighbours index for index and the same answers bit for bit (cell, probes, weights,
+// walk steps from the start grid, blended SH).
 // A blob whose probes do not tessellate into its header's counts, or whose header asks for more work
 // than the layout allows, is refused; the builder refuses sets the loader would.
 #include "hard_families.h"
@@ -108,6 +109,21 @@ void require_same_store(const Store& compact, const Store& rebuilt, const StoreD
     }
 }
 
+// The compact store with the rebuilt layout's start grid, which is coarser (start_grid.h): the builder
+// chose its dimensions at one entry per kRebuiltStartGridCellsPerEntry inner cells.
+StoreData with_grid_of(StoreData compact, const StoreData& rebuilt) {
+    uint32_t expected[3], stored[3];
+    start_grid_dimensions(rebuilt.bounds_min, rebuilt.bounds_max, rebuilt.inner_cell_count,
+                          kRebuiltStartGridCellsPerEntry, expected);
+    start_grid_dimensions(compact.bounds_min, compact.bounds_max, compact.inner_cell_count,
+                          kStoredStartGridCellsPerEntry, stored);
+    REQUIRE(std::memcmp(rebuilt.grid, expected, sizeof expected) == 0);
+    REQUIRE(std::memcmp(compact.grid, stored, sizeof stored) == 0);
+    std::copy(rebuilt.grid, rebuilt.grid + 3, compact.grid);
+    fill_start_grid(compact);
+    return compact;
+}
+
 std::vector<uint8_t> with_word(std::vector<uint8_t> blob, size_t offset, uint32_t value) {
     std::memcpy(blob.data() + offset, &value, 4);
     const uint64_t sum = store_checksum(blob.data(), blob.size());
@@ -136,7 +152,8 @@ TEST_CASE("store rebuild: every hard-case family loads into the compact store's 
                 const StoreData compact = build(set, kLayoutCompact, flags, quantize);
                 const StoreData rebuilt = build(set, kLayoutRebuilt, flags, quantize);
                 REQUIRE(rebuilt.positions == compact.positions);
-                require_same_store(*load(compact), *load(rebuilt), compact);
+                const StoreData regridded = with_grid_of(compact, rebuilt);
+                require_same_store(*load(regridded), *load(rebuilt), regridded);
             }
         }
     }
@@ -146,7 +163,12 @@ TEST_CASE("store rebuild: 11,000 probes (32-bit indices) load into the compact s
     const families::ProbeSet set = families::random_cloud(11000, 18);
     const StoreData compact = build(set, kLayoutCompact, 0, true);
     REQUIRE(compact.cell_count() > 65535);
-    require_same_store(*load(compact), *load(build(set, kLayoutRebuilt, 0, true)), compact);
+    const StoreData rebuilt = build(set, kLayoutRebuilt, 0, true);
+    const StoreData regridded = with_grid_of(compact, rebuilt);
+    // One entry per 8 inner cells instead of 4: about half the entries.
+    const double entries = double(rebuilt.grid[0]) * rebuilt.grid[1] * rebuilt.grid[2];
+    REQUIRE(entries < 0.6 * double(compact.grid[0]) * compact.grid[1] * compact.grid[2]);
+    require_same_store(*load(regridded), *load(rebuilt), regridded);
 }
 
 TEST_CASE("store rebuild: a blob whose probes do not make its header's cells is refused, naming why",
@@ -198,17 +220,26 @@ TEST_CASE("store rebuild: the header bounds the rebuild's work; the builder refu
         REQUIRE(try_load(forged, &message) == Status::invalid_blob);
         CHECK(message.find("start grid has more than") != std::string::npos);
     }
-    // Within that limit, a grid beyond the builder's dimensions for the bounds and cells would make a few bytes
-    // cost millions of walks: refused too; one more entry along an axis (another platform's rounding) is not.
-    const uint32_t* built = &d.grid[0];
+    // Within that limit, a grid beyond the builder's finest dimensions for the bounds and cells (those of the
+    // stored layouts) would make a few bytes cost millions of walks: refused too; one more entry along an axis
+    // (another platform's rounding) is not, nor the finest grid itself (this layout's blobs of earlier builders).
+    uint32_t finest[3];
+    start_grid_dimensions(d.bounds_min, d.bounds_max, d.inner_cell_count, kStoredStartGridCellsPerEntry, finest);
+    REQUIRE(uint64_t(finest[0]) * finest[1] * finest[2] > uint64_t(d.grid[0]) * d.grid[1] * d.grid[2]);
     {
         std::vector<uint8_t> forged = with_word(blob, offsetof(StoreHeader, grid), 1024);
         forged = with_word(forged, offsetof(StoreHeader, grid) + 4, 1024);
         forged = with_word(forged, offsetof(StoreHeader, grid) + 8, 4);
         REQUIRE(try_load(forged, &message) == Status::invalid_blob);
-        CHECK(message.find("is larger than the builder's " + std::to_string(built[0]) + " x " + std::to_string(built[1]) +
-                           " x " + std::to_string(built[2])) != std::string::npos);
-        REQUIRE(try_load(with_word(blob, offsetof(StoreHeader, grid) + 4, built[1] + 1), &message) == Status::ok);
+        CHECK(message.find("is larger than the builder's finest " + std::to_string(finest[0]) + " x " +
+                           std::to_string(finest[1]) + " x " + std::to_string(finest[2])) != std::string::npos);
+        REQUIRE(try_load(with_word(blob, offsetof(StoreHeader, grid) + 4, finest[1] + 1), &message) == Status::ok);
+        std::vector<uint8_t> earlier = blob;
+        for (int a = 0; a < 3; ++a) earlier = with_word(earlier, offsetof(StoreHeader, grid) + 4 * size_t(a), finest[a]);
+        REQUIRE(try_load(earlier, &message) == Status::ok);
+        const StoreData compact = build(families::random_cloud(60, 3), kLayoutCompact, 0, false);
+        REQUIRE(std::memcmp(compact.grid, finest, sizeof finest) == 0);
+        require_same_store(*load(compact), *Store::load(earlier.data(), earlier.size()), compact);
     }
     // Probes on two skew lines: a Delaunay tessellation of n^2 / 4 cells, over 16 a probe at 80 probes.
     families::ProbeSet skew{"two skew lines", {}};
