@@ -375,8 +375,9 @@ Json run_level(const LevelArgs& a, const std::string& name, const LevelSettings&
         add(r, {{"target", nullptr}}, "all");
     }
     // Equal memory, tetprobe at its best layout: at the bytes of each count's compact placed store (a budget the
-    // peers below are built at), every layout holds as many probes of one placement order as fit (any prefix of
-    // tp_place_probes's order is its placement for that count).
+    // peers below are built at), every layout holds as many probes of one placement order as fit: a prefix of the
+    // greedy's order to 4,000 (placement exchanges only sets below about 1,000 at their own target, so a prefix is
+    // the greedy's set for that count, not the exchanged set a target of that count would give).
     const size_t order_count = std::min<size_t>(candidate_count, kPlacementCounts.back());
     if (order_count >= 4 && !counts.empty()) {
         double order_seconds = 0;
