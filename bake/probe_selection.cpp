@@ -26,8 +26,9 @@ constexpr uint32_t kStartProbes = 16;
 constexpr double kGrowth = 0.25;
 constexpr size_t kTrialsPerCell = 8;
 // The exchanges at the target: the best insertions one step tries (no two in cells that share a probe),
-// and the probes all their stores may hold together (a step at n probes builds about n stores of n), so
-// small sets get many steps and sets of a thousand or more none: their cost stays near the greedy's own.
+// and the probes all their stores may hold together, a try at n probes counted as n stores of n (as if no
+// star were known from an earlier try), so small sets get many tries and sets of a thousand or more none:
+// the cost stays near the greedy's own.
 constexpr size_t kExchangeProposals = 4;
 constexpr size_t kExchangeWork = 1000000;
 
@@ -347,6 +348,7 @@ public:
         std::unique_ptr<Store> store = build(*chosen);
         evaluate(*store, *chosen, *in_set, &state);
         HeldOutTerms terms = held_out_terms(state);
+        std::unordered_map<uint32_t, std::pair<std::vector<CellKey>, double>> removal_cache;  // by candidate
         // One exchange: candidate b in, the probe whose removal then costs least out; true when kept.
         auto try_exchange = [&](uint32_t b) {
             std::vector<uint32_t> grown(*chosen);
@@ -370,12 +372,32 @@ public:
             }
             for (size_t k = 0; k < n; ++k)
                 if (c_.counted[grown[k]]) affected[k].push_back(grown[k]);
+            // A removal's change depends on the probe's star (the cells around it) alone: one whose star is
+            // as in an earlier try keeps that try's change, and only the stars near the exchanges so far
+            // are built again.
+            std::vector<std::vector<CellKey>> star(grown.size());
+            const uint32_t cell_count = with_store->header().cell_count;
+            for (uint32_t c = 0; c < cell_count; ++c) {
+                uint32_t v[4], neighbours[4];
+                with_store->cell(c, v, neighbours);
+                const CellKey key = key_of(with, c);
+                for (uint32_t p : v)
+                    if (p < place_of_stored.size()) star[place_of_stored[p]].push_back(key);
+            }
             std::vector<double> change(n);
+            std::vector<uint8_t> known(n, 0);
+            for (size_t k = 0; k < n; ++k) {
+                std::sort(star[k].begin(), star[k].end());
+                const auto it = removal_cache.find(grown[k]);
+                if (it != removal_cache.end() && it->second.first == star[k]) change[k] = it->second.second, known[k] = 1;
+            }
             run_jobs(n, threads_, [&](size_t k) {
+                if (known[k]) return;
                 std::sort(affected[k].begin(), affected[k].end());
                 affected[k].erase(std::unique(affected[k].begin(), affected[k].end()), affected[k].end());
                 change[k] = removal_change(with_terms, grown, k, affected[k]);
             }, {}, "exchange");
+            for (size_t k = 0; k < n; ++k) removal_cache[grown[k]] = {std::move(star[k]), change[k]};
             work += (n + 1) * (n + 2);
             size_t out = 0;
             for (size_t k = 1; k < n; ++k)
