@@ -363,6 +363,38 @@ TEST_CASE("placement validation points: free points over the candidates' volume,
     CHECK(find_candidates(scene, rules, 4, 2, Progress{}).validation != c.validation);
 }
 
+TEST_CASE("placement validation points: walkable ones stand in the band above a floor, not over a drop", "[placement]") {
+    // Open ground at 0 with a 4 m high platform over x < 6 (and a pillar raising the scene's top to 10):
+    // the platform's edge candidates have no neighbour at their height beyond the edge, so their boxes
+    // reach a spacing past it, over the ground 4 m and more below: outside the band, never a point.
+    Scene scene;
+    add_floor(scene, 0, 12, 0, 12, 0);
+    add_box(scene, {0, 0, 0}, {6, 4, 12}, true);
+    add_box(scene, {11, 0, 11}, {12, 10, 12}, true);
+    CandidateRules rules;
+    rules.mode = PlacementMode::walkable;
+    rules.spacing = 1;
+    rules.margin = 0.1;
+    rules.walk_min_height = 0;
+    rules.walk_max_height = 2;
+    const Candidates c = find_candidates(scene, rules, 5, 2, Progress{});
+    size_t on_platform = 0, platform_edge = 0, ground = 0;
+    for (size_t i = 0; i < c.validation.size() / 3; ++i) {
+        const float* p = &c.validation[3 * i];
+        const bool pillar = p[0] > 11 && p[2] > 11;
+        REQUIRE_FALSE(pillar);
+        const float floor = p[0] < 6 ? 4.0f : 0.0f;
+        CHECK(p[1] - floor >= 0.1f);
+        CHECK(p[1] - floor <= 2.0f);
+        on_platform += floor == 4.0f;
+        platform_edge += floor == 4.0f && p[0] > 5.5f;
+        ground += floor == 0.0f;
+    }
+    CHECK(on_platform > 100);
+    CHECK(ground > 100);
+    CHECK(platform_edge > 0);  // the strip along the edge, beyond the last candidates, is still measured
+}
+
 TEST_CASE("placement: the same bytes for a seed on one thread and two; a smaller target after the same rounds",
           "[placement]") {
     const Scene scene = lit_room();
