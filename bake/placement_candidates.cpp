@@ -167,6 +167,18 @@ public:
         return heights;
     }
 
+    // Whether the first surface straight below the world point is a floor between low and high under
+    // it: the point stands in that floor's walkable band (the band ends at the first surface above a
+    // floor, so the floor a band point belongs to is the first surface below it).
+    bool in_band(const float world[3], double low, double high) const {
+        float from[3];
+        local(world, from);
+        const float down[3] = {0.0f, -1.0f, 0.0f};
+        RayHit hit;
+        if (!caster_.intersect(from, down, 0.0f, INFINITY, &hit)) return false;
+        return faces_up(hit) && double(hit.distance) >= low && double(hit.distance) <= high;
+    }
+
     // The height (world y) of the first surface of any kind above the point at (x, y, z), or
     // infinity: where a walkable band above a floor at y ends.
     double ceiling(double x, double y, double z, double step) const {
@@ -331,14 +343,20 @@ std::vector<uint32_t> reached_from_seeds(const Scene& scene, const Lattice& l, c
 // spacing where none has (toward a wall that kept the neighbour out, so the strip along walls is
 // measured too), and its share of the band in height. The k-th point is drawn from the candidate at
 // quantile (k + 1/2) / wanted of the boxes' volumes, uniformly in its box, and kept when the move crosses
-// no surface and the point is not inside geometry: points fall uniformly over the free volume.
-std::vector<float> validation_points(const Lattice& l, const Geometry& geometry, const std::vector<float>& candidates,
+// no surface, the point is not inside geometry and (walkable) stands in a floor's band: points fall
+// uniformly over the free volume where candidates could stand.
+std::vector<float> validation_points(const Lattice& l, const CandidateRules& rules, const Geometry& geometry,
+                                     const std::vector<float>& candidates,
                                      const std::vector<float>& extents, const std::vector<uint64_t>& columns, uint64_t seed,
                                      uint32_t threads, const Progress& progress) {
     const size_t count = candidates.size() / 3;
     const size_t wanted = count < kMinValidation ? count
                                                  : std::min(kMaxValidation, std::max(kMinValidation, count / kCandidatesPerValidation));
     const size_t nx = l.counts[0], nz = l.counts[2];
+    // Walkable: the band the candidates fill (band_heights), checked at the point itself, since a box
+    // reaching past its column may hang over a drop, a slope too steep to stand on or a lower floor.
+    const bool walkable = rules.mode == PlacementMode::walkable;
+    const double band_low = std::max(rules.walk_min_height, rules.margin), band_high = rules.walk_max_height;
     // Half-widths toward -x, +x, -z, +z.
     std::vector<float> reach(4 * count);
     run_jobs(count, threads, [&](size_t i) {
@@ -376,7 +394,7 @@ std::vector<float> validation_points(const Lattice& l, const Geometry& geometry,
             const float p[3] = {float(double(from[0]) - r[0] + u[0] * (double(r[0]) + r[1])),
                                 float(double(extents[2 * i]) + u[1] * (double(extents[2 * i + 1]) - extents[2 * i])),
                                 float(double(from[2]) - r[2] + u[2] * (double(r[2]) + r[3]))};
-            if (geometry.clear(from, p) && !geometry.inside(p)) {
+            if (geometry.clear(from, p) && !geometry.inside(p) && (!walkable || geometry.in_band(p, band_low, band_high))) {
                 std::copy(p, p + 3, &points[3 * k]);
                 kept[k] = 1;
                 return;
@@ -491,7 +509,7 @@ Candidates find_candidates(const Scene& scene, const CandidateRules& rules, uint
         columns = std::move(reached_columns);
     }
     result.validation =
-        validation_points(l, geometry, result.positions, result.extents, columns, seed, threads, progress.part(0.9, 1.0));
+        validation_points(l, rules, geometry, result.positions, result.extents, columns, seed, threads, progress.part(0.9, 1.0));
     return result;
 }
 

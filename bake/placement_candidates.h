@@ -17,7 +17,10 @@
 // Validation points: free points drawn uniformly over the volume the candidates stand for, up to the
 // walls (a candidate, drawn in proportion to its box's volume, moved within half a spacing of it
 // horizontally, a whole spacing toward a side without a neighbouring candidate, and within its share of
-// the band vertically; kept when the move crosses no surface and the point is not inside geometry), one
+// the band vertically; kept when the move crosses no surface, the point is not inside geometry and, in
+// the walkable mode, the point itself stands in the band above a floor, as candidates do: the first
+// surface below it faces up and lies between the band's bottom and walk_max_height under it, so a box
+// reaching past a ledge or onto a slope too steep to stand on measures no air where nothing walks), one
 // for every four candidates (at least 1,024 when there are that many candidates, at most 16,384).
 #pragma once
 

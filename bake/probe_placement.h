@@ -32,7 +32,8 @@ struct PlacementSettings {
 };
 
 struct Placement {
-    std::vector<float> positions;        // 3 per probe, world, in the order chosen (any prefix is a placement)
+    std::vector<float> positions;        // 3 per probe, world, in the order chosen (refined at the target:
+                                         // a smaller target's placement is not a prefix of it)
     std::vector<ErrorCurvePoint> curve;  // estimated error against the probe count, increasing counts;
                                          // empty when nothing was chosen (all candidates returned)
     size_t candidates = 0;               // candidates that passed the rules

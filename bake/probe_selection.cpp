@@ -25,6 +25,12 @@ namespace {
 constexpr uint32_t kStartProbes = 16;
 constexpr double kGrowth = 0.25;
 constexpr size_t kTrialsPerCell = 8;
+// The exchanges at the target: the best insertions one step tries (no two in cells that share a probe),
+// and the probes all their stores may hold together, a try at n probes counted as n stores of n (as if no
+// star were known from an earlier try), so small sets get many tries and sets of a thousand or more none:
+// the cost stays near the greedy's own.
+constexpr size_t kExchangeProposals = 4;
+constexpr size_t kExchangeWork = 1000000;
 
 // A cell by its vertices (candidate indices, sorted; an outer cell's marker kept): the same key in two
 // rounds is the same cell.
@@ -272,6 +278,158 @@ public:
         return batch;
     }
 
+    // The held-out error of a round: per candidate, its noise-corrected squared residual (0 unless active)
+    // and that term's variance; summed, the quantity every insertion lowers (insertion_gain.h).
+    struct HeldOutTerms {
+        std::vector<double> term, variance;
+        double sum = 0;
+    };
+    static HeldOutTerms held_out_terms(const RoundState& s) {
+        HeldOutTerms t;
+        t.term.assign(s.active.size(), 0.0);
+        t.variance.assign(s.active.size(), 0.0);
+        for (size_t x = 0; x < s.active.size(); ++x) {
+            if (!s.active[x]) continue;
+            const double rr = squared_residual(s, uint32_t(x));
+            t.term[x] = rr - s.noise[x];
+            t.variance[x] = squared_residual_variance(rr, s.noise[x]);
+            t.sum += t.term[x];
+        }
+        return t;
+    }
+
+    // The held-out error's change if probe `removed` (an index into chosen) left the probes of round s:
+    // only the candidates it interpolates (and itself, held out again) change, located in the store
+    // built without it.
+    double removal_change(const HeldOutTerms& terms, const std::vector<uint32_t>& chosen,
+                          size_t removed, const std::vector<uint32_t>& affected) const {
+        std::vector<uint32_t> rest(chosen);
+        rest.erase(rest.begin() + std::ptrdiff_t(removed));
+        const std::unique_ptr<Store> store = build(rest);
+        std::vector<float> positions(3 * affected.size());
+        for (size_t k = 0; k < affected.size(); ++k) std::copy_n(&c_.positions[3 * size_t(affected[k])], 3, &positions[3 * k]);
+        std::vector<int32_t> cells(affected.size(), -1);
+        std::vector<uint32_t> probes(4 * affected.size(), 0);
+        std::vector<float> weights(4 * affected.size(), 0.0f);
+        size_t first_outside = 0;
+        store->weights_batch(affected.size(), positions.data(), 12, cells.data(), 4, probes.data(), 16, weights.data(), 16,
+                             BatchSettings{}, &first_outside);
+        double change = 0;
+        for (size_t k = 0; k < affected.size(); ++k) {
+            const uint32_t x = affected[k];
+            if (cells[k] < 0) continue;
+            double r[kSignalSize], noise = c_.signal.noise[x];
+            for (int q = 0; q < kSignalSize; ++q) r[q] = c_.signal.value[kSignalSize * size_t(x) + size_t(q)];
+            for (int q = 0; q < 4; ++q) {
+                const double w = weights[4 * k + size_t(q)];
+                if (w == 0) continue;
+                const uint32_t c = rest[store->probe_source(probes[4 * k + size_t(q)])];
+                for (int a = 0; a < kSignalSize; ++a) r[a] -= w * c_.signal.value[kSignalSize * size_t(c) + size_t(a)];
+                noise += w * w * c_.signal.noise[c];
+            }
+            double rr = 0;
+            for (double v : r) rr += v * v;
+            change += rr - noise - terms.term[x];
+        }
+        return change;
+    }
+
+    // Exchanges at the target. The greedy never takes a probe back: the start is chosen for spread alone
+    // and early insertions for a coarse set's errors, so a small set keeps probes a later one made
+    // redundant. A step tries the round's best insertions in turn: one goes in and the probe whose removal
+    // then costs least goes out, kept only when the held-out error (the insertion gain's sum, measured
+    // with the stores built) drops by more than the noise of the terms that changed. The validation points
+    // stay out of it, so the error reported for the result is still measured where nothing was fitted.
+    void exchange(std::vector<uint32_t>* chosen, std::vector<uint8_t>* in_set) {
+        size_t work = 0;
+        const size_t n = chosen->size();
+        if (n < 5) return;
+        RoundState state;
+        std::unique_ptr<Store> store = build(*chosen);
+        evaluate(*store, *chosen, *in_set, &state);
+        HeldOutTerms terms = held_out_terms(state);
+        std::unordered_map<uint32_t, std::pair<std::vector<CellKey>, double>> removal_cache;  // by candidate
+        // One exchange: candidate b in, the probe whose removal then costs least out; true when kept.
+        auto try_exchange = [&](uint32_t b) {
+            std::vector<uint32_t> grown(*chosen);
+            grown.push_back(b);
+            std::vector<uint8_t> grown_in(*in_set);
+            grown_in[b] = 1;
+            RoundState with;
+            const std::unique_ptr<Store> with_store = build(grown);
+            evaluate(*with_store, grown, grown_in, &with);
+            const HeldOutTerms with_terms = held_out_terms(with);
+            // An insertion that does not lower the error itself: no removal after it can make up for it.
+            if (!(with_terms.sum < terms.sum)) return false;
+            // Per probe of the grown set (by its place in grown): the candidates it interpolates.
+            std::vector<std::vector<uint32_t>> affected(grown.size());
+            std::vector<uint32_t> place_of_stored(with.candidate_of_stored.size());
+            for (uint32_t p = 0; p < with.candidate_of_stored.size(); ++p) place_of_stored[p] = with_store->probe_source(p);
+            for (size_t x = 0; x < count_; ++x) {
+                if (!with.active[x]) continue;
+                for (int q = 0; q < 4; ++q)
+                    if (with.weights[4 * x + size_t(q)] != 0) affected[place_of_stored[with.probes[4 * x + size_t(q)]]].push_back(uint32_t(x));
+            }
+            for (size_t k = 0; k < n; ++k)
+                if (c_.counted[grown[k]]) affected[k].push_back(grown[k]);
+            // A removal's change depends on the probe's star (the cells around it) alone: one whose star is
+            // as in an earlier try keeps that try's change, and only the stars near the exchanges so far
+            // are built again.
+            std::vector<std::vector<CellKey>> star(grown.size());
+            const uint32_t cell_count = with_store->header().cell_count;
+            for (uint32_t c = 0; c < cell_count; ++c) {
+                uint32_t v[4], neighbours[4];
+                with_store->cell(c, v, neighbours);
+                const CellKey key = key_of(with, c);
+                for (uint32_t p : v)
+                    if (p < place_of_stored.size()) star[place_of_stored[p]].push_back(key);
+            }
+            std::vector<double> change(n);
+            std::vector<uint8_t> known(n, 0);
+            for (size_t k = 0; k < n; ++k) {
+                std::sort(star[k].begin(), star[k].end());
+                const auto it = removal_cache.find(grown[k]);
+                if (it != removal_cache.end() && it->second.first == star[k]) change[k] = it->second.second, known[k] = 1;
+            }
+            run_jobs(n, threads_, [&](size_t k) {
+                if (known[k]) return;
+                std::sort(affected[k].begin(), affected[k].end());
+                affected[k].erase(std::unique(affected[k].begin(), affected[k].end()), affected[k].end());
+                change[k] = removal_change(with_terms, grown, k, affected[k]);
+            }, {}, "exchange");
+            for (size_t k = 0; k < n; ++k) removal_cache[grown[k]] = {std::move(star[k]), change[k]};
+            work += (n + 1) * (n + 2);
+            size_t out = 0;
+            for (size_t k = 1; k < n; ++k)
+                if (change[k] < change[out]) out = k;
+            // The exchanged set, measured in full against the current one.
+            std::vector<uint32_t> next(*chosen);
+            next[out] = b;
+            std::vector<uint8_t> next_in(*in_set);
+            next_in[(*chosen)[out]] = 0, next_in[b] = 1;
+            RoundState after;
+            std::unique_ptr<Store> after_store = build(next);
+            evaluate(*after_store, next, next_in, &after);
+            HeldOutTerms after_terms = held_out_terms(after);
+            double variance = 0;
+            for (size_t x = 0; x < count_; ++x)
+                if (after_terms.term[x] != terms.term[x]) variance += after_terms.variance[x] + terms.variance[x];
+            if (!(terms.sum - after_terms.sum > kSignificance * std::sqrt(variance))) return false;
+            *chosen = std::move(next), *in_set = std::move(next_in);
+            store = std::move(after_store), state = std::move(after), terms = std::move(after_terms);
+            state.store = store.get();
+            return true;
+        };
+        for (size_t step = 0; step < n; ++step) {
+            bool kept = false;
+            for (uint32_t b : choose(state, kExchangeProposals)) {
+                if (work + (n + 1) * (n + 2) > kExchangeWork) return;
+                if ((kept = try_exchange(b))) break;
+            }
+            if (!kept) break;
+        }
+    }
+
 private:
     // |interpolated - baked|² at candidate x, over the signal's components.
     static double squared_residual(const RoundState& s, uint32_t x) {
@@ -402,6 +560,12 @@ Selection select_probes(const SignalPoints& candidates, const SignalPoints& vali
         for (uint32_t i : batch) result.order.push_back(i), in_set[i] = 1;
         previous_batch = std::move(batch);
         store = selector.build(result.order);
+    }
+    // A target gets its own set: exchanged there, the probe that goes out replaced in the order by the one
+    // that comes in, and the curve's last point measured again.
+    if (settings.exchange && settings.target_count && result.order.size() == target && target < count) {
+        selector.exchange(&result.order, &in_set);
+        result.curve.back().error = selector.estimate(*selector.build(result.order), result.order);
     }
     // A bound met inside the last batch: the shortest prefix of it that meets it.
     if (!settings.target_count && settings.error_bound > 0 && result.curve.size() > 1 &&

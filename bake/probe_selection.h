@@ -15,8 +15,11 @@
 // outer cell without a trusted gain by the largest error one candidate's insertion removes at itself,
 // when that stands out; the others by the volume a candidate would take over, for coverage), and the
 // best of each cell joins a batch unless its cavity touches one already chosen this round. Batches
-// grow with the set (a quarter of it), so the whole curve costs a few dozen rounds. Every count is a
-// prefix of the insertion order: the first k chosen are the placement for k probes.
+// grow with the set (a quarter of it), so the whole curve costs a few dozen rounds. At a target the set
+// is then refined by exchanges (a probe out, a better candidate in, kept when the held-out candidates'
+// error drops beyond its noise; bounded in work, so mostly for sets of hundreds): the result for a target
+// is its own set, not a prefix of a larger target's. The curve's points before the last are the greedy's
+// rounds; its last point is the result's estimate.
 #pragma once
 
 #include "bake/placement_signal.h"
@@ -38,6 +41,7 @@ struct SelectionSettings {
     uint32_t target_count = 0;  // stop at this many (0: no target)
     double error_bound = 0;     // stop at the first count whose estimate is at most this (0: none)
     uint32_t threads = 1;
+    bool exchange = true;       // refine a target's set by exchanges (off: every count a prefix of the greedy's order)
 };
 
 struct ErrorCurvePoint {
@@ -46,7 +50,8 @@ struct ErrorCurvePoint {
 };
 
 struct Selection {
-    std::vector<uint32_t> order;         // candidate indices in the order chosen: the result
+    std::vector<uint32_t> order;         // candidate indices in the order chosen (an exchanged probe's
+                                         // replacement takes its place): the result
     std::vector<ErrorCurvePoint> curve;  // one point per round, counts increasing, ending at the result
 };
 

@@ -772,9 +772,11 @@ TP_API tp_status tp_place_probes_bound(const tp_scene* scene, const tp_placement
     probes, the candidate whose insertion lowers the squared error summed over the held-out candidates
     most (noise taken out; where no gain stands out from the noise, the one that takes over the most
     volume), in batches of candidates whose changes do not overlap, until target_count or error_bound.
-    out_positions receives 3 floats per probe in the order chosen: the first k of them are the placement
-    for k probes. out_error_curve (may be NULL) receives 2 floats per point, (probe count, estimated
-    error, see error_bound), one per round with counts increasing and the last at the result; no points
+    A target's set is then refined by exchanges (a probe out, a better candidate in, kept when the
+    held-out error drops beyond its noise), so a smaller target's placement is not a prefix of a larger
+    one's. out_positions receives 3 floats per probe in the order chosen. out_error_curve (may be NULL)
+    receives 2 floats per point, (probe count, estimated error, see error_bound), one per round with
+    counts increasing and the last at the result (the refined set's estimate); no points
     when nothing is chosen. Room: capacity probes and curve_capacity points. *out_count and
     *out_curve_points (may be NULL) receive the counts, also with TP_ERROR_BUFFER_TOO_SMALL, when nothing
     is written; size both with tp_place_probes_bound. Errors name the numbers: a target above the

@@ -99,7 +99,7 @@ namespace TetProbe
         public float Error;
     }
 
-    /// <summary>Placed probes in the order chosen (the first k are the placement for k probes) and the error curve, one
+    /// <summary>Placed probes in the order chosen (refined at the target: a smaller target's set is not a prefix) and the error curve, one
     /// point per round with counts increasing to them (empty when every candidate is returned unchosen).</summary>
     public sealed class PlacementResult
     {

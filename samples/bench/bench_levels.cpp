@@ -14,19 +14,20 @@
 //       --json {"level": <level fields below, without results>, "probe_file": str, "results": [<result>]}.
 //   tetprobe_bench levels placement [--levels default|all|A,B,...] [--out DIR]
 //       Placement against the simpler choices among the same candidates, compact layout, at the counts
-//       kPlacementCounts (50 to 4,000): placed (one tp_place_probes to the largest count, threads --threads;
-//       each count its prefix), placed with leak control, random subsamples (mean of 3), the uniform
+//       kPlacementCounts (50 to 4,000): placed (one tp_place_probes per count with that target, threads
+//       --threads, as a user asks for N probes: the set is exchanged at its target, so a count is not a
+//       prefix of a larger count's placement), placed with leak control, random subsamples (mean of 3), the uniform
 //       lattice pick, all candidates (with and without leak control), and the error placement reports for
 //       each count (its curve) beside the one measured. Writes DIR/levels_placement.json:
 //       {"schema": "tetprobe-bench-levels-placement/1", "machine", "settings": {"counts", "random_seeds",
 //        "placement": {...as levels.json}, "threads": int}, "metric": str,
 //        "levels": [{<level fields of levels.json>, "candidates": int, "placement_seconds": float,
-//                    "placement_progress_calls": int, "curve": [[probes, error]],
+//                    "placement_progress_calls": int, "curve": [[probes, error]] (the largest count's run),
 //                    "all": {"rms", "rms_leak": float},
 //                    "counts": [{"probes": int, "placed", "placed_leak", "random", "lattice", "reported": float,
-//                                "p95": {"placed", "random", "lattice": float}}]}]}
-//       (errors: RMS of the metric, p95 its 95th percentile; reported: the placement's curve at that count, NaN
-//       written as null).
+//                                "placement_seconds": float, "p95": {"placed", "random", "lattice": float}}]}]}
+//       (errors: RMS of the metric, p95 its 95th percentile; reported: the last point of that count's own
+//       placement curve, the error it reports for its result, NaN written as null; "placement": "per count").
 //   tetprobe_bench levels leakpoints --level NAME [--count N] --out DIR
 //       Leak control point by point: the placed set of N probes (default: all candidates), compact layout,
 //       with and without leak control, at each evaluation point. Writes DIR/leak_points_NAME_N|all.csv: per
@@ -374,8 +375,9 @@ Json run_level(const LevelArgs& a, const std::string& name, const LevelSettings&
         add(r, {{"target", nullptr}}, "all");
     }
     // Equal memory, tetprobe at its best layout: at the bytes of each count's compact placed store (a budget the
-    // peers below are built at), every layout holds as many probes of one placement order as fit (any prefix of
-    // tp_place_probes's order is its placement for that count).
+    // peers below are built at), every layout holds as many probes of one placement order as fit: a prefix of the
+    // greedy's order to 4,000 (placement exchanges only sets below about 1,000 at their own target, so a prefix is
+    // the greedy's set for that count, not the exchanged set a target of that count would give).
     const size_t order_count = std::min<size_t>(candidate_count, kPlacementCounts.back());
     if (order_count >= 4 && !counts.empty()) {
         double order_seconds = 0;
@@ -486,7 +488,8 @@ Json run_level_placement(const LevelArgs& a, const std::string& name, const Leve
     Json counts = Json::array();
     for (uint32_t n : kPlacementCounts) {
         if (n > largest) continue;
-        const std::vector<float> placed(run.positions.begin(), run.positions.begin() + 3 * std::ptrdiff_t(n));
+        const PlacementRun own = n == largest ? run : placement_run(level, rules, n, a.threads);
+        const std::vector<float>& placed = own.positions;
         const std::vector<float> placed_sh = sh_of(level, candidates, placed, settings);
         const LevelError placed_error = evaluate_tetprobe(level, placed, placed_sh, plain).error;
         const double placed_rms = placed_error.rms;
@@ -501,12 +504,12 @@ Json run_level_placement(const LevelArgs& a, const std::string& name, const Leve
         subset(lattice_pick(candidates.positions, n), &p, &sh);
         const LevelError lattice_error = evaluate_tetprobe(level, p, sh, plain).error;
         const double lattice_rms = lattice_error.rms;
-        const double reported = curve_error_at(run.curve, n);
+        const double reported = curve_error_at(own.curve, n);
         std::printf("| %u | %.4f | %.4f | %.4f | %.4f | %.3f | %.3f | %.4f | %.3f |\n", n, placed_rms, leak_rms, random_rms,
                     lattice_rms, placed_rms / random_rms, placed_rms / lattice_rms, reported, reported / placed_rms);
         std::fflush(stdout);
         counts.push_back({{"probes", n}, {"placed", placed_rms}, {"placed_leak", leak_rms}, {"random", random_rms},
-                          {"lattice", lattice_rms}, {"reported", nullable(reported)},
+                          {"lattice", lattice_rms}, {"reported", nullable(reported)}, {"placement_seconds", own.seconds},
                           {"p95", {{"placed", placed_error.p95}, {"random", random_p95}, {"lattice", lattice_error.p95}}}});
     }
     const double all_rms = evaluate_tetprobe(level, candidates.positions, candidates.sh, plain).error.rms;
@@ -532,7 +535,7 @@ int run_placement_part(const LevelArgs& a, const LevelSettings& settings) {
     doc["settings"] = {{"counts", kPlacementCounts}, {"random_seeds", kRandomSeeds}, {"threads", a.threads},
                        {"placement", {{"mode", "walkable"}, {"spacing", rules.spacing},
                                       {"band", {rules.walk_min_height, rules.walk_max_height}},
-                                      {"rays", rules.rays}, {"error_bound", 0}}}};
+                                      {"rays", rules.rays}, {"error_bound", 0}, {"runs", "one per count, target = count"}}}};
     doc["metric"] = kMetricText;
     Json levels = Json::array();
     int status = 0;

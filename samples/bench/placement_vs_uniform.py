@@ -56,7 +56,7 @@ def measure():
         start = time.time()
         placement = tetprobe.place_probes(scene, spacing=0.5, target=n)
         seconds = time.time() - start
-        # The largest target's curve passes through every smaller count (each is a prefix of its order).
+        # The largest target's curve: the greedy's rounds through the smaller counts, then its own result.
         curve = [[int(c), float(e)] for c, e in placement.error_curve]
         uniform = candidates[((2 * np.arange(n) + 1) * len(candidates)) // (2 * n)]
         comparison.append({"probes": n, "placed": error(placement.positions), "uniform": error(uniform),

@@ -158,10 +158,10 @@ class Report:
         st = doc.get("settings", {})
         placement = st.get("placement", {})
         out += ["Placement (tp_place_probes, %s mode, spacing %s m, band %s m, %s-ray candidate bake, %s threads) runs "
-                "once to the largest count; each count is a prefix of its order. Beside it, among the same candidates "
+                "once per count with that target (each set refined at its own target, as a user asking for N probes gets it). Beside it, among the same candidates "
                 "(each chosen probe's SH from the candidates' one bake, compact layout): a random subsample (mean of %s "
-                "seeds), the uniform lattice pick, all candidates; the error placement reports for each count (its "
-                "curve, between rounds interpolated in log count); and the placed set with leak control. Same metric "
+                "seeds), the uniform lattice pick, all candidates; the error placement reports for each count (the "
+                "last point of that count's own curve); and the placed set with leak control. Same metric "
                 "as above. Misses: placed above 0.8x random (random), above the lattice pick (lattice), reported more "
                 "than 30%% off the measured (reported), leak control above the error without (leak)." % (
                     placement.get("mode"), placement.get("spacing"), placement.get("band"), placement.get("rays"),

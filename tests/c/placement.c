@@ -273,7 +273,7 @@ void test_placement_whole_and_walkable(void) {
     }
 
     /* A target without an error bound: exactly that many probes, still in free space; a smaller target
-       gives a prefix of the larger one's order. */
+       gets its own set of that many, also in free space. */
     options.error_bound = 0.0f;
     options.target_count = 20;
     EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points));
@@ -281,7 +281,8 @@ void test_placement_whole_and_walkable(void) {
     for (i = 0; i < again_count && i < 20; ++i) CHECK(free_with_margin(again + 3 * i, options.margin));
     options.target_count = 6;
     EXPECT_OK(tp_place_probes(scene, &options, positions, bound, &count, NULL, 0, NULL));
-    CHECK(count == 6 && memcmp(positions, again, 6 * 3 * sizeof(float)) == 0);
+    CHECK(count == 6);
+    for (i = 0; i < count && i < 6; ++i) CHECK(free_with_margin(positions + 3 * i, options.margin));
     /* Neither: nothing is chosen or baked, every candidate returned, no curve. */
     options.target_count = 0;
     EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points));

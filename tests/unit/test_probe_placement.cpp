@@ -363,7 +363,40 @@ TEST_CASE("placement validation points: free points over the candidates' volume,
     CHECK(find_candidates(scene, rules, 4, 2, Progress{}).validation != c.validation);
 }
 
-TEST_CASE("placement: the same bytes for a seed on one thread and two; every count a prefix", "[placement]") {
+TEST_CASE("placement validation points: walkable ones stand in the band above a floor, not over a drop", "[placement]") {
+    // Open ground at 0 with a 4 m high platform over x < 6 (and a pillar raising the scene's top to 10):
+    // the platform's edge candidates have no neighbour at their height beyond the edge, so their boxes
+    // reach a spacing past it, over the ground 4 m and more below: outside the band, never a point.
+    Scene scene;
+    add_floor(scene, 0, 12, 0, 12, 0);
+    add_box(scene, {0, 0, 0}, {6, 4, 12}, true);
+    add_box(scene, {11, 0, 11}, {12, 10, 12}, true);
+    CandidateRules rules;
+    rules.mode = PlacementMode::walkable;
+    rules.spacing = 1;
+    rules.margin = 0.1;
+    rules.walk_min_height = 0;
+    rules.walk_max_height = 2;
+    const Candidates c = find_candidates(scene, rules, 5, 2, Progress{});
+    size_t on_platform = 0, platform_edge = 0, ground = 0;
+    for (size_t i = 0; i < c.validation.size() / 3; ++i) {
+        const float* p = &c.validation[3 * i];
+        const bool pillar = p[0] > 11 && p[2] > 11;
+        REQUIRE_FALSE(pillar);
+        const float floor = p[0] < 6 ? 4.0f : 0.0f;
+        CHECK(p[1] - floor >= 0.1f);
+        CHECK(p[1] - floor <= 2.0f);
+        on_platform += floor == 4.0f;
+        platform_edge += floor == 4.0f && p[0] > 5.5f;
+        ground += floor == 0.0f;
+    }
+    CHECK(on_platform > 100);
+    CHECK(ground > 100);
+    CHECK(platform_edge > 0);  // the strip along the edge, beyond the last candidates, is still measured
+}
+
+TEST_CASE("placement: the same bytes for a seed on one thread and two; a smaller target after the same rounds",
+          "[placement]") {
     const Scene scene = lit_room();
     PlacementSettings settings = room_settings();
     settings.target_count = 60;
@@ -382,12 +415,18 @@ TEST_CASE("placement: the same bytes for a seed on one thread and two; every cou
     REQUIRE(one.curve.size() >= 3);
     CHECK(one.curve.back().probes == 60);
     for (size_t i = 1; i < one.curve.size(); ++i) CHECK(one.curve[i].probes > one.curve[i - 1].probes);
-    // A smaller target is the start of the same order, and its error a point of the same curve.
-    settings.target_count = one.curve[one.curve.size() / 2].probes;
+    // A smaller target runs the same greedy rounds (the same curve up to its last point), then gets its
+    // own exchanged set of that many.
+    const size_t middle = one.curve.size() / 2;
+    settings.target_count = one.curve[middle].probes;
     const Placement fewer = place_probes(scene, settings);
     REQUIRE(fewer.positions.size() == 3 * size_t(settings.target_count));
-    CHECK(std::memcmp(fewer.positions.data(), one.positions.data(), fewer.positions.size() * sizeof(float)) == 0);
-    CHECK(fewer.curve.back().error == one.curve[one.curve.size() / 2].error);
+    REQUIRE(fewer.curve.size() == middle + 1);
+    CHECK(fewer.curve.back().probes == settings.target_count);
+    for (size_t i = 0; i < middle; ++i) {
+        CHECK(fewer.curve[i].probes == one.curve[i].probes);
+        CHECK(fewer.curve[i].error == one.curve[i].error);
+    }
     // Another seed bakes other samples: still a valid placement of the same size.
     settings.seed = 6;
     settings.target_count = 60;
@@ -630,6 +669,7 @@ TEST_CASE("placement: a bright spot beyond the hull of the first probes, mixed w
     SelectionSettings settings;
     settings.target_count = 30;  // three rounds: 16, 20, 25, 30
     settings.threads = 1;
+    settings.exchange = false;   // the greedy's rounds alone: the first 16 are the start
     const Selection chosen = select_probes(points, points, settings, Progress{});
     REQUIRE(chosen.order.size() == 30);
     std::string order;
@@ -658,4 +698,45 @@ TEST_CASE("placement: a bright spot beyond the hull of the first probes, mixed w
     size_t bright = 0;
     for (uint32_t i : chosen.order) bright += i >= region && i < bright_end;
     CHECK(bright >= 1);
+}
+
+TEST_CASE("placement: at the target, probes the spread start left where the light is flat move to where it changes",
+          "[placement]") {
+    // A 21 x 21 x 3 slab of candidates, 1 m apart, with a flat field but for one bright bump (about 2 m
+    // wide) off the centre. A target of 16 is the farthest-point start alone: spread over the slab for
+    // distance only, it has one probe near the bump, and the greedy never takes a probe back. The
+    // exchange at the target moves probes from the flat field (where one more or less costs nothing: a
+    // constant is interpolated exactly) to the bump.
+    SignalPoints points;
+    const double centre[3] = {5.3, 13.6, 1.0};
+    for (int x = 0; x <= 20; ++x)
+        for (int y = 0; y <= 20; ++y)
+            for (int z = 0; z <= 2; ++z) {
+                points.positions.insert(points.positions.end(), {float(x), float(y), float(z)});
+                const double d2 = (x - centre[0]) * (x - centre[0]) + (y - centre[1]) * (y - centre[1]) + (z - centre[2]) * (z - centre[2]);
+                for (int k = 0; k < kSignalSize; ++k) points.signal.value.push_back(float(1.0 + 4.0 * std::exp(-d2 / 2.0)));
+                points.signal.noise.push_back(1e-4f);
+                points.counted.push_back(1);
+            }
+    SelectionSettings settings;
+    settings.target_count = 16;
+    settings.threads = 2;
+    const Selection chosen = select_probes(points, points, settings, Progress{});
+    REQUIRE(chosen.order.size() == 16);
+    REQUIRE(chosen.curve.size() == 1);
+    std::string order;
+    for (uint32_t i : chosen.order) order += std::to_string(i) + " ";
+    INFO("order: " << order << " error " << chosen.curve.back().error);
+    // The start alone has one probe within 3 m of the bump's centre (at 1.75 m; the others 5.5 m and
+    // more away); exchanged, at least three.
+    size_t near = 0;
+    for (uint32_t i : chosen.order) {
+        double d2 = 0;
+        for (int a = 0; a < 3; ++a) d2 += (points.positions[3 * size_t(i) + size_t(a)] - centre[a]) * (points.positions[3 * size_t(i) + size_t(a)] - centre[a]);
+        near += d2 <= 3.0 * 3.0;
+    }
+    CHECK(near >= 3);
+    // The same set on one thread.
+    settings.threads = 1;
+    CHECK(select_probes(points, points, settings, Progress{}).order == chosen.order);
 }
