@@ -28,13 +28,18 @@ uint64_t spread_bits(uint64_t x) {
            uint64_t(kSpread.bits[(x >> 14) & 0x7F]) << 42;
 }
 
-// Stable LSD radix sort of indices by a 32-bit key (three 11-bit passes, no comparisons).
+// Stable LSD radix sort of indices by a 32-bit key (three 11-bit passes, no comparisons). The three
+// digits' counts are taken in one read of the keys (a pass permutes the keys, not the counts).
 void radix_sort_by_key(std::vector<uint32_t>& keys, std::vector<uint32_t>& items) {
     std::vector<uint32_t> key_buffer(keys.size()), item_buffer(items.size());
-    std::vector<uint32_t> counts(2049);
+    std::vector<uint32_t> all_counts(3 * 2049, 0u);
+    for (uint32_t k : keys) {
+        ++all_counts[(k & 0x7FFu) + 1];
+        ++all_counts[2049 + ((k >> 11) & 0x7FFu) + 1];
+        ++all_counts[2 * 2049 + ((k >> 22) & 0x7FFu) + 1];
+    }
     for (int shift = 0; shift < 32; shift += 11) {
-        std::fill(counts.begin(), counts.end(), 0u);
-        for (uint32_t k : keys) ++counts[((k >> shift) & 0x7FFu) + 1];
+        uint32_t* const counts = &all_counts[size_t(shift / 11) * 2049];
         for (int b = 0; b < 2048; ++b) counts[size_t(b) + 1] += counts[size_t(b)];
         for (size_t i = 0; i < keys.size(); ++i) {
             const uint32_t to = counts[(keys[i] >> shift) & 0x7FFu]++;
@@ -114,7 +119,10 @@ void order_cells_for_locality(StoreData& data, const CellSource& source) {
     // (about 1/2000 of the bounds per axis, finer than any walk cares about). Plain IEEE arithmetic
     // (no library functions), so a loader on another platform computes the same keys.
     const float* positions = data.positions.data();
-    std::vector<uint32_t> keys(cells), old_of_new(cells);
+    // Written straight into the two sorts' inputs (inner cells, then outer ones).
+    std::vector<uint32_t> inner_keys(inner), outer_keys(cells - inner), inner_order(inner), outer_order(cells - inner);
+    std::iota(inner_order.begin(), inner_order.end(), 0u);
+    std::iota(outer_order.begin(), outer_order.end(), inner);
     // The inner cells nearest the centre, in the old order (usually one; all of them on a tie).
     std::vector<uint32_t> nearest_cells;
     double nearest_distance = 0;
@@ -137,10 +145,9 @@ void order_cells_for_locality(StoreData& data, const CellSource& source) {
             centroid[a] = sum[a] * inverse;
             double f = (centroid[a] - lo[a]) * scale[a];
             f = f < 0 ? 0 : f > double(0x1FFFFF) ? double(0x1FFFFF) : f;
-            code |= spread_bits(uint64_t(f)) << a;
+            code |= spread_bits(uint64_t(int64_t(f))) << a;  // f < 2^21: a signed conversion, no fix-up
         }
-        keys[c] = uint32_t(code >> 31);
-        old_of_new[c] = c;
+        (c < inner ? inner_keys[c] : outer_keys[c - inner]) = uint32_t(code >> 31);
         if (c < inner) {
             const double distance = (centroid[0] - centre[0]) * (centroid[0] - centre[0]) +
                                     (centroid[1] - centre[1]) * (centroid[1] - centre[1]) +
@@ -153,15 +160,13 @@ void order_cells_for_locality(StoreData& data, const CellSource& source) {
             }
         }
     }
-    std::vector<uint32_t> inner_keys(keys.begin(), keys.begin() + inner), outer_keys(keys.begin() + inner, keys.end());
-    std::vector<uint32_t> inner_order(old_of_new.begin(), old_of_new.begin() + inner);
-    std::vector<uint32_t> outer_order(old_of_new.begin() + inner, old_of_new.end());
     radix_sort_by_key(inner_keys, inner_order);
     radix_sort_by_key(outer_keys, outer_order);
     // Cells with equal keys (and equally near the centre below) go by their vertex slots, so the order
     // depends only on which cells there are.
     order_equal_keys_by_vertices(inner_keys, inner_order, source);
     order_equal_keys_by_vertices(outer_keys, outer_order, source);
+    std::vector<uint32_t> old_of_new(cells);
     std::copy(inner_order.begin(), inner_order.end(), old_of_new.begin());
     std::copy(outer_order.begin(), outer_order.end(), old_of_new.begin() + inner);
     std::vector<uint32_t> new_of_old(cells);
