@@ -28,12 +28,13 @@ struct PlacementSettings {
     // when a target needs more probes than the others (the light's inverse-square peak there is no
     // interpolation's to follow; the real-level benchmark leaves such points out alike).
     double light_clearance = kDefaultPlacementLightClearance;
-    Progress progress;          // stages "candidates", "bake", "select", "done"
+    Progress progress;          // stages "candidates", "bake", "select", "exchange", "done"
 };
 
 struct Placement {
     std::vector<float> positions;        // 3 per probe, world, in the order chosen (refined at the target:
-                                         // a smaller target's placement is not a prefix of it)
+                                         // a smaller target's placement need not be a prefix of it; an
+                                         // error-bound result and large targets are the greedy's order)
     std::vector<ErrorCurvePoint> curve;  // estimated error against the probe count, increasing counts;
                                          // empty when nothing was chosen (all candidates returned)
     size_t candidates = 0;               // candidates that passed the rules

@@ -26,11 +26,21 @@ constexpr uint32_t kStartProbes = 16;
 constexpr double kGrowth = 0.25;
 constexpr size_t kTrialsPerCell = 8;
 // The exchanges at the target: the best insertions one step tries (no two in cells that share a probe),
-// and the probes all their stores may hold together, a try at n probes counted as n stores of n (as if no
-// star were known from an earlier try), so small sets get many tries and sets of a thousand or more none:
-// the cost stays near the greedy's own.
+// and the probes all their stores may hold together, a try at n probes counted as (n + 1)(n + 2) (n stores
+// of n, as if no star were known from an earlier try, and the grown and exchanged sets), so sets of a
+// thousand or more get none. Below that the cap does not bind at small n: the bound is at most n steps of
+// kExchangeProposals tries, each evaluating every candidate up to twice, far above the greedy's few
+// rounds. bench_levels' equal-memory part relies on a 4,000 target getting no exchange (its prefixes are
+// the greedy's sets).
 constexpr size_t kExchangeProposals = 4;
 constexpr size_t kExchangeWork = 1000000;
+// The share of the selection's progress the greedy reports into when an exchange follows (where one runs,
+// it takes about as long as the greedy).
+constexpr double kGreedyShare = 0.5;
+
+// Whether a set of n probes gets exchanges: a removal must leave more than one cell's probes for the
+// held-out error to rank removals by (fewer than 5 is the start's spread alone), and every try fits the cap.
+bool exchange_fits(size_t n) { return n >= 5 && (n + 1) * (n + 2) <= kExchangeWork; }
 
 // A cell by its vertices (candidate indices, sorted; an outer cell's marker kept): the same key in two
 // rounds is the same cell.
@@ -137,6 +147,20 @@ public:
         }, Progress{}, "locate");
     }
 
+    // A point's residual r (its baked value minus the interpolation of the candidates candidate(q) with
+    // weights w[q]) from its own value and noise; returns the residual's noise (its own and the probes').
+    template <class CandidateOf>
+    double residual_of(const float* value, double noise, const float* w, CandidateOf candidate, double* r) const {
+        for (int k = 0; k < kSignalSize; ++k) r[k] = value[k];
+        for (int q = 0; q < 4; ++q) {
+            if (w[q] == 0) continue;
+            const uint32_t c = candidate(q);
+            for (int k = 0; k < kSignalSize; ++k) r[k] -= double(w[q]) * c_.signal.value[kSignalSize * size_t(c) + size_t(k)];
+            noise += double(w[q]) * double(w[q]) * c_.signal.noise[c];
+        }
+        return noise;
+    }
+
     // The error estimate at the validation points (see probe_selection.h).
     double estimate(const Store& store, const std::vector<uint32_t>& chosen) const {
         if (!(mean_ > 0)) return 0.0;
@@ -148,15 +172,9 @@ public:
         size_t n = 0;
         for (size_t i = 0; i < v_.positions.size() / 3; ++i) {
             if (!v_.counted[i]) continue;
-            double r[kSignalSize], noise = v_.signal.noise[i];
-            for (int k = 0; k < kSignalSize; ++k) r[k] = v_.signal.value[kSignalSize * i + size_t(k)];
-            for (int s = 0; s < 4; ++s) {
-                const double w = weights[4 * i + size_t(s)];
-                if (w == 0) continue;
-                const uint32_t c = chosen[store.probe_source(probes[4 * i + size_t(s)])];
-                for (int k = 0; k < kSignalSize; ++k) r[k] -= w * c_.signal.value[kSignalSize * size_t(c) + size_t(k)];
-                noise += w * w * c_.signal.noise[c];
-            }
+            double r[kSignalSize];
+            const double noise = residual_of(&v_.signal.value[kSignalSize * i], v_.signal.noise[i], &weights[4 * i],
+                                             [&](int q) { return chosen[store.probe_source(probes[4 * i + size_t(q)])]; }, r);
             for (double x : r) sum += x * x;
             sum -= noise;
             ++n;
@@ -185,17 +203,9 @@ public:
             for (int a = 0; a < 3; ++a) s->local[3 * i + size_t(a)] = float(double(c_.positions[3 * i + size_t(a)]) - origin[a]);
             if (in_set[i]) continue;
             s->active[i] = c_.counted[i] && s->cell[i] >= 0;
-            double* r = &s->residual[kSignalSize * i];
-            double noise = c_.signal.noise[i];
-            for (int k = 0; k < kSignalSize; ++k) r[k] = c_.signal.value[kSignalSize * i + size_t(k)];
-            for (int q = 0; q < 4; ++q) {
-                const double w = s->weights[4 * i + size_t(q)];
-                if (w == 0) continue;
-                const uint32_t c = s->candidate_of_stored[s->probes[4 * i + size_t(q)]];
-                for (int k = 0; k < kSignalSize; ++k) r[k] -= w * c_.signal.value[kSignalSize * size_t(c) + size_t(k)];
-                noise += w * w * c_.signal.noise[c];
-            }
-            s->noise[i] = noise;
+            s->noise[i] = residual_of(&c_.signal.value[kSignalSize * i], c_.signal.noise[i], &s->weights[4 * i],
+                                      [&](int q) { return s->candidate_of_stored[s->probes[4 * i + size_t(q)]]; },
+                                      &s->residual[kSignalSize * i]);
         }
         prepare_round(*s);
     }
@@ -318,15 +328,9 @@ public:
         for (size_t k = 0; k < affected.size(); ++k) {
             const uint32_t x = affected[k];
             if (cells[k] < 0) continue;
-            double r[kSignalSize], noise = c_.signal.noise[x];
-            for (int q = 0; q < kSignalSize; ++q) r[q] = c_.signal.value[kSignalSize * size_t(x) + size_t(q)];
-            for (int q = 0; q < 4; ++q) {
-                const double w = weights[4 * k + size_t(q)];
-                if (w == 0) continue;
-                const uint32_t c = rest[store->probe_source(probes[4 * k + size_t(q)])];
-                for (int a = 0; a < kSignalSize; ++a) r[a] -= w * c_.signal.value[kSignalSize * size_t(c) + size_t(a)];
-                noise += w * w * c_.signal.noise[c];
-            }
+            double r[kSignalSize];
+            const double noise = residual_of(&c_.signal.value[kSignalSize * size_t(x)], c_.signal.noise[x], &weights[4 * k],
+                                             [&](int q) { return rest[store->probe_source(probes[4 * k + size_t(q)])]; }, r);
             double rr = 0;
             for (double v : r) rr += v * v;
             change += rr - noise - terms.term[x];
@@ -340,10 +344,13 @@ public:
     // then costs least goes out, kept only when the held-out error (the insertion gain's sum, measured
     // with the stores built) drops by more than the noise of the terms that changed. The validation points
     // stay out of it, so the error reported for the result is still measured where nothing was fitted.
-    void exchange(std::vector<uint32_t>* chosen, std::vector<uint8_t>* in_set) {
+    // Returns whether an exchange was kept. Reports into `progress` per step (cancel included).
+    bool exchange(std::vector<uint32_t>* chosen, std::vector<uint8_t>* in_set, const Progress& progress) {
         size_t work = 0;
         const size_t n = chosen->size();
-        if (n < 5) return;
+        if (!exchange_fits(n)) return false;
+        double done = 0;  // the larger of the steps' and the work's share of their caps
+        progress.report(0.0, "exchange");
         RoundState state;
         std::unique_ptr<Store> store = build(*chosen);
         evaluate(*store, *chosen, *in_set, &state);
@@ -372,9 +379,10 @@ public:
             }
             for (size_t k = 0; k < n; ++k)
                 if (c_.counted[grown[k]]) affected[k].push_back(grown[k]);
-            // A removal's change depends on the probe's star (the cells around it) alone: one whose star is
-            // as in an earlier try keeps that try's change, and only the stars near the exchanges so far
-            // are built again.
+            // A removal's change depends almost only on the probe's star (the cells around it; also the hull
+            // normals of its link, and ties on degenerate sets): one whose star is as in an earlier try keeps
+            // that try's change, and only the stars near the exchanges so far are built again. A cached
+            // change only picks the probe to try; the kept set is measured in full.
             std::vector<std::vector<CellKey>> star(grown.size());
             const uint32_t cell_count = with_store->header().cell_count;
             for (uint32_t c = 0; c < cell_count; ++c) {
@@ -396,7 +404,7 @@ public:
                 std::sort(affected[k].begin(), affected[k].end());
                 affected[k].erase(std::unique(affected[k].begin(), affected[k].end()), affected[k].end());
                 change[k] = removal_change(with_terms, grown, k, affected[k]);
-            }, {}, "exchange");
+            }, progress.part(done, done), "exchange");
             for (size_t k = 0; k < n; ++k) removal_cache[grown[k]] = {std::move(star[k]), change[k]};
             work += (n + 1) * (n + 2);
             size_t out = 0;
@@ -410,6 +418,10 @@ public:
             RoundState after;
             std::unique_ptr<Store> after_store = build(next);
             evaluate(*after_store, next, next_in, &after);
+            // A candidate the exchanged set's store no longer reaches would stop counting and lower the sum
+            // for free (a hull probe out where the outer cells do not cover it): such an exchange is refused.
+            for (size_t x = 0; x < count_; ++x)
+                if (x != b && state.active[x] && !after.active[x]) return false;
             HeldOutTerms after_terms = held_out_terms(after);
             double variance = 0;
             for (size_t x = 0; x < count_; ++x)
@@ -420,14 +432,19 @@ public:
             state.store = store.get();
             return true;
         };
+        bool changed = false;
         for (size_t step = 0; step < n; ++step) {
+            done = std::max(double(step) / double(n), double(work) / double(kExchangeWork));
+            progress.report(done, "exchange");
             bool kept = false;
             for (uint32_t b : choose(state, kExchangeProposals)) {
-                if (work + (n + 1) * (n + 2) > kExchangeWork) return;
+                if (work + (n + 1) * (n + 2) > kExchangeWork) return changed;
                 if ((kept = try_exchange(b))) break;
             }
             if (!kept) break;
+            changed = true;
         }
+        return changed;
     }
 
 private:
@@ -531,7 +548,10 @@ Selection select_probes(const SignalPoints& candidates, const SignalPoints& vali
     result.order = selector.start(std::min<size_t>(kStartProbes, target));
     std::vector<uint8_t> in_set(count, 0);
     for (uint32_t i : result.order) in_set[i] = 1;
-    progress.report(0.0, "select");
+    // The greedy reports into its share, the exchange (where one can run) into the rest.
+    const bool exchanges = settings.exchange && settings.target_count && target < count && exchange_fits(target);
+    const Progress greedy = progress.part(0.0, exchanges ? kGreedyShare : 1.0);
+    greedy.report(0.0, "select");
     const double log_span = std::log(std::max(2.0, double(target) / kStartProbes));
     // Candidates no round would insert (none counts) fill a target beyond the counted ones, in order.
     auto fill = [&] {
@@ -545,7 +565,7 @@ Selection select_probes(const SignalPoints& candidates, const SignalPoints& vali
         const double error = selector.estimate(*store, result.order);
         result.curve.push_back({uint32_t(result.order.size()), error});
         const size_t n = result.order.size();
-        progress.report(settings.target_count ? std::log(double(n) / kStartProbes) / log_span
+        greedy.report(settings.target_count ? std::log(double(n) / kStartProbes) / log_span
                                               : std::min(1.0, settings.error_bound / std::max(error, 1e-300)),
                         "select");
         if (n >= target || (!settings.target_count && settings.error_bound > 0 && error <= settings.error_bound)) break;
@@ -562,11 +582,10 @@ Selection select_probes(const SignalPoints& candidates, const SignalPoints& vali
         store = selector.build(result.order);
     }
     // A target gets its own set: exchanged there, the probe that goes out replaced in the order by the one
-    // that comes in, and the curve's last point measured again.
-    if (settings.exchange && settings.target_count && result.order.size() == target && target < count) {
-        selector.exchange(&result.order, &in_set);
+    // that comes in, and the curve's last point measured again when one was kept.
+    if (exchanges && result.order.size() == target &&
+        selector.exchange(&result.order, &in_set, progress.part(kGreedyShare, 1.0)))
         result.curve.back().error = selector.estimate(*selector.build(result.order), result.order);
-    }
     // A bound met inside the last batch: the shortest prefix of it that meets it.
     if (!settings.target_count && settings.error_bound > 0 && result.curve.size() > 1 &&
         result.curve.back().error <= settings.error_bound && !previous_batch.empty()) {

@@ -18,7 +18,8 @@
 // grow with the set (a quarter of it), so the whole curve costs a few dozen rounds. At a target the set
 // is then refined by exchanges (a probe out, a better candidate in, kept when the held-out candidates'
 // error drops beyond its noise; bounded in work, so mostly for sets of hundreds): the result for a target
-// is its own set, not a prefix of a larger target's. The curve's points before the last are the greedy's
+// is its own set, which need not be a prefix of a larger target's (an error bound's result and large
+// targets are the greedy's order). The curve's points before the last are the greedy's
 // rounds; its last point is the result's estimate.
 #pragma once
 

@@ -747,7 +747,7 @@ typedef struct tp_placement_options {
     uint32_t bounces;            /* as tp_bake_options (default 2) */
     uint64_t seed;               /* the same seed gives the same bytes whatever the thread count */
     uint32_t threads;            /* 0 = all cores */
-    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "select", "done" */
+    tp_progress_fn progress;     /* may be NULL; stages "candidates", "bake", "select", "exchange", "done" */
     void* progress_user;
     /** Points closer than this to a point or spot light do not count in the error and are chosen last
         (world units, default 1; 0 = every point counts): the light's inverse-square peak there is no
@@ -773,16 +773,17 @@ TP_API tp_status tp_place_probes_bound(const tp_scene* scene, const tp_placement
     most (noise taken out; where no gain stands out from the noise, the one that takes over the most
     volume), in batches of candidates whose changes do not overlap, until target_count or error_bound.
     A target's set is then refined by exchanges (a probe out, a better candidate in, kept when the
-    held-out error drops beyond its noise), so a smaller target's placement is not a prefix of a larger
-    one's. out_positions receives 3 floats per probe in the order chosen. out_error_curve (may be NULL)
-    receives 2 floats per point, (probe count, estimated error, see error_bound), one per round with
-    counts increasing and the last at the result (the refined set's estimate); no points
-    when nothing is chosen. Room: capacity probes and curve_capacity points. *out_count and
-    *out_curve_points (may be NULL) receive the counts, also with TP_ERROR_BUFFER_TOO_SMALL, when nothing
-    is written; size both with tp_place_probes_bound. Errors name the numbers: a target above the
-    candidates or too many candidates for memory (TP_ERROR_INVALID_ARGUMENT), fewer than 4 candidates
-    (TP_ERROR_DEGENERATE), no mesh, nothing with an inside or no candidate a seed sees (TP_ERROR_SCENE);
-    cancelling writes nothing. */
+    held-out error drops beyond its noise), so a smaller target's placement need not be a prefix of a
+    larger one's; an error_bound result and large targets (about 1,000 probes and more, where exchanges
+    are out of the work bound) are the greedy's order. out_positions receives 3 floats per probe in the
+    order chosen. out_error_curve (may be NULL) receives 2 floats per point, (probe count, estimated
+    error, see error_bound), one per round with counts increasing and the last at the result (the
+    refined set's estimate); no points when nothing is chosen. Room: capacity probes and curve_capacity
+    points. *out_count and *out_curve_points (may be NULL) receive the counts, also with
+    TP_ERROR_BUFFER_TOO_SMALL, when nothing is written; size both with tp_place_probes_bound. Errors
+    name the numbers: a target above the candidates or too many candidates for memory
+    (TP_ERROR_INVALID_ARGUMENT), fewer than 4 candidates (TP_ERROR_DEGENERATE), no mesh, nothing with
+    an inside or no candidate a seed sees (TP_ERROR_SCENE); cancelling writes nothing. */
 TP_API tp_status tp_place_probes(const tp_scene* scene, const tp_placement_options* options, float* out_positions,
                                  size_t capacity, size_t* out_count, float* out_error_curve, size_t curve_capacity,
                                  size_t* out_curve_points);

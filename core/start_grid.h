@@ -11,10 +11,9 @@ namespace tetprobe {
 constexpr uint32_t kMaxStartGridCells = 1u << 22;
 
 // Inner cells per grid entry the builder aims at. A stored grid costs bytes only, so it is fine; the
-// rebuilt layout's is filled at load, a walk per entry (about a tenth of the rebuild at one entry per
-// 4 cells), so it is coarser there: half the entries, and a cold query walks about 0.7 steps more
-// from its entry (one per 16 cells saved 0.45 ms more per 10k probes but cost 1.6 steps, about 25%
-// of a cold query).
+// rebuilt layout's is filled at load, a walk per entry (a sizeable part of the rebuild), so it is
+// coarser there: half the entries, at the cost of a cold query walking a little further from its
+// entry (coarser still saved little more load time and cost a larger share of a cold query).
 constexpr uint32_t kStoredStartGridCellsPerEntry = 4;
 constexpr uint32_t kRebuiltStartGridCellsPerEntry = 8;
 

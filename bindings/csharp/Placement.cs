@@ -99,7 +99,7 @@ namespace TetProbe
         public float Error;
     }
 
-    /// <summary>Placed probes in the order chosen (refined at the target: a smaller target's set is not a prefix) and the error curve, one
+    /// <summary>Placed probes in the order chosen (refined at the target: a smaller target's set need not be a prefix; an error-bound result and large targets are the greedy's order) and the error curve, one
     /// point per round with counts increasing to them (empty when every candidate is returned unchosen).</summary>
     public sealed class PlacementResult
     {

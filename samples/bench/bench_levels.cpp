@@ -15,8 +15,8 @@
 //   tetprobe_bench levels placement [--levels default|all|A,B,...] [--out DIR]
 //       Placement against the simpler choices among the same candidates, compact layout, at the counts
 //       kPlacementCounts (50 to 4,000): placed (one tp_place_probes per count with that target, threads
-//       --threads, as a user asks for N probes: the set is exchanged at its target, so a count is not a
-//       prefix of a larger count's placement), placed with leak control, random subsamples (mean of 3), the uniform
+//       --threads, as a user asks for N probes: the set is exchanged at its target, so a count need not
+//       be a prefix of a larger count's placement), placed with leak control, random subsamples (mean of 3), the uniform
 //       lattice pick, all candidates (with and without leak control), and the error placement reports for
 //       each count (its curve) beside the one measured. Writes DIR/levels_placement.json:
 //       {"schema": "tetprobe-bench-levels-placement/1", "machine", "settings": {"counts", "random_seeds",

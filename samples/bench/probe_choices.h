@@ -30,7 +30,9 @@ CandidateSet find_candidates(const Level& level, const PlacementRules& rules, co
 std::vector<float> placed_probes(const Level& level, const PlacementRules& rules, uint32_t target, double* seconds);
 
 // One placement to `target` probes (walkable, error bound 0) with its error curve, its time and how often it
-// reported progress: every count up to target is a prefix of the positions (tp_place_probes's order).
+// reported progress: the curve's points before the last are the greedy's rounds; the positions are the set for
+// target, exchanged there (a prefix of them is the greedy's set for that count only where no exchange ran,
+// e.g. targets of about 1,000 and more).
 struct PlacementRun {
     std::vector<float> positions;
     std::vector<float> curve;  // (probes, estimated error) pairs, counts increasing

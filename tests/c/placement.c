@@ -272,17 +272,20 @@ void test_placement_whole_and_walkable(void) {
         }
     }
 
-    /* A target without an error bound: exactly that many probes, still in free space; a smaller target
-       gets its own set of that many, also in free space. */
+    /* A target without an error bound: exactly that many probes, still in free space. A smaller target gets
+       its own set after the same greedy rounds (16 and 20 on the way to 25 and 30): its curve before the
+       last point is the larger target's first points, bit for bit. */
     options.error_bound = 0.0f;
-    options.target_count = 20;
+    options.target_count = 30;
+    EXPECT_OK(tp_place_probes(scene, &options, positions, bound, &count, curve, bound, &points));
+    CHECK(count == 30 && points >= 3 && curve[2 * (points - 1)] == 30.0f);
+    for (i = 0; i < count && i < 30; ++i) CHECK(free_with_margin(positions + 3 * i, options.margin));
+    options.target_count = 25;
     EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points));
-    CHECK(again_count == 20 && again_points >= 1 && again_curve[2 * (again_points - 1)] == 20.0f);
-    for (i = 0; i < again_count && i < 20; ++i) CHECK(free_with_margin(again + 3 * i, options.margin));
-    options.target_count = 6;
-    EXPECT_OK(tp_place_probes(scene, &options, positions, bound, &count, NULL, 0, NULL));
-    CHECK(count == 6);
-    for (i = 0; i < count && i < 6; ++i) CHECK(free_with_margin(positions + 3 * i, options.margin));
+    CHECK(again_count == 25 && again_points >= 2 && again_curve[2 * (again_points - 1)] == 25.0f);
+    for (i = 0; i < again_count && i < 25; ++i) CHECK(free_with_margin(again + 3 * i, options.margin));
+    CHECK(again_points >= 2 && again_points <= points &&
+          memcmp(again_curve, curve, 2 * sizeof(float) * (again_points - 1)) == 0);
     /* Neither: nothing is chosen or baked, every candidate returned, no curve. */
     options.target_count = 0;
     EXPECT_OK(tp_place_probes(scene, &options, again, bound, &again_count, again_curve, bound, &again_points));

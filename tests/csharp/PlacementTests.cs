@@ -91,8 +91,12 @@ static class PlacementTests
             PlacementResult again = Placement.PlaceProbes(room, options);
             Tests.Check(again.Positions.SequenceEqual(placed.Positions), "same seed, same probes on one thread");
             options.TargetCount = 25;
-            Tests.Check(Placement.PlaceProbes(room, options).Positions.SequenceEqual(placed.Positions.Take(25)),
-                        "a smaller target is the start of the same order");
+            PlacementResult fewer = Placement.PlaceProbes(room, options);
+            PlacementErrorPoint[] rounds = fewer.ErrorCurve.Take(fewer.ErrorCurve.Length - 1).ToArray();
+            Func<PlacementErrorPoint, long> bits = p => ((long)p.Probes << 32) | (uint)BitConverter.ToInt32(BitConverter.GetBytes(p.Error), 0);
+            Tests.Check(fewer.Positions.Length == 25 && fewer.ErrorCurve[fewer.ErrorCurve.Length - 1].Probes == 25 &&
+                        rounds.Length <= curve.Length && rounds.Select(bits).SequenceEqual(curve.Take(rounds.Length).Select(bits)),
+                        "a smaller target gets its own set after the same greedy rounds, bit for bit");
             options.TargetCount = 40;
 
             var walkable = new PlacementOptions { Mode = PlacementMode.Walkable, Spacing = 0.75f, Margin = 0.2f, WalkMinHeight = 0,

@@ -1,6 +1,7 @@
 // Automatic probe placement: candidates obey the rules (checked against brute-force geometry) and stay in
 // the space playable seeds reach, validation points cover the free volume, the result is deterministic
-// for a seed and any thread count and every count is a prefix, placement beats random subsamples of the
+// for a seed and any thread count, a smaller target runs the same greedy rounds and at the target exchanges
+// move probes where the light changes, placement beats random subsamples of the
 // same candidates on a scene with a sharp shadow and reports the error a high-ray measurement finds,
 // noise does not steer it, a large level places at half a metre, cancel and bad input; the selection
 // itself gives a bright region beyond the hull of its first probes a probe early.
@@ -549,7 +550,8 @@ TEST_CASE("placement: a 250 x 100 x 250 m level places at half a metre (memory g
 
 TEST_CASE("placement: cancelling in any stage stops with Status::cancelled", "[placement]") {
     const Scene scene = lit_room();
-    for (const char* stage : {"candidates", "bake", "select"}) {
+    // Target 40 is below the candidates and small enough for exchanges, so every stage runs.
+    for (const char* stage : {"candidates", "bake", "select", "exchange"}) {
         PlacementSettings settings = room_settings();
         settings.target_count = 40;
         struct Cancel {

@@ -11,7 +11,7 @@ from ._native import check, lib
 from .scene import scene_argument
 
 #: place_probes' result: positions[N, 3] float32 in the order chosen (refined at the target: a smaller
-#: target's set is not a prefix) and error_curve[K, 2] float32 of (probe count, estimated error), counts increasing to the result.
+#: target's set need not be a prefix; an error-bound result and large targets are the greedy's order) and error_curve[K, 2] float32 of (probe count, estimated error), counts increasing to the result.
 Placement = collections.namedtuple("Placement", ["positions", "error_curve"])
 
 _MODES = {"whole": _native.PLACEMENT_WHOLE, "walkable": _native.PLACEMENT_WALKABLE}
@@ -31,7 +31,8 @@ def place_probes(scene, mode="whole", spacing=1.0, margin=0.1, walk_height=(0.0,
     The error: RMS over validation points and the 6 axis normals of the luminance irradiance's
     interpolation error, relative to its mean, with the bake's noise taken out; points closer than
     `light_clearance` to a point or spot light do not count. positions[N, 3] are float32 world units in
-    the order chosen (refined at the target: a smaller target's set is not a prefix); error_curve[K, 2] holds (probe count,
+    the order chosen (refined at the target: a smaller target's set need not be a prefix; an error-bound result and
+    large targets are the greedy's order); error_curve[K, 2] holds (probe count,
     error), counts increasing to the result. The same `seed` gives the same result whatever the `threads`
     count (0 = all cores); progress(fraction, stage) may return True to cancel (Error(CANCELLED));
     `scene` is a Scene or the path of a scene file."""
